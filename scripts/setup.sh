@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Install every Debian 12 package fsai needs. Idempotent: packages already
+# installed are skipped and `apt-get update` runs at most once per call (and
+# not at all when nothing is missing). Nothing is downloaded from elsewhere.
+set -euo pipefail
+
+PACKAGES=(
+  # Toolchain
+  build-essential cmake pkg-config git clang-format
+  # FEniCSx 0.5 stack: DOLFINx C++ (pulls PETSc 3.18 with MUMPS/hypre,
+  # SLEPc 3.18, HDF5-MPI, Open MPI), FFCx/UFL/basix for the form compiler
+  libdolfinx-dev python3-ffcx python3-ufl python3-basix
+  libpetsc-real-dev libslepc-real-dev openmpi-bin libopenmpi-dev
+  # Meshing
+  libgmsh-dev gmsh
+  # Configuration, logging, tests
+  libcli11-dev libtoml11-dev nlohmann-json3-dev libfmt-dev catch2
+  # Signal processing and sound output
+  libfftw3-dev libsndfile1-dev
+  # Charts
+  python3-matplotlib python3-numpy
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "setup: installing ${#missing[@]} package(s): ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

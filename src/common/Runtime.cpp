@@ -1,0 +1,127 @@
+// Copyright (C) 2026 fsai developers
+#include "Runtime.h"
+#include "errors.h"
+#include "timer.h"
+#include <cctype>
+#include <cstdlib>
+#include <dolfinx/common/log.h>
+#include <filesystem>
+#include <iostream>
+#include <petscsys.h>
+#include <slepcsys.h>
+
+namespace
+{
+/// True for a token PETSc owns: "-x..." with a letter after one dash.
+/// "-h" is ours (help); "--..." is ours.
+bool is_petsc_option(const std::string& a)
+{
+  return a.size() >= 2 and a[0] == '-' and std::isalpha(a[1]) and a != "-h";
+}
+
+/// True if `a` reads as a number (so "-1e-8" is a value, not an option)
+bool is_number(const std::string& a)
+{
+  char* end = nullptr;
+  std::strtod(a.c_str(), &end);
+  return !a.empty() and end == a.c_str() + a.size();
+}
+} // namespace
+
+//-----------------------------------------------------------------------------
+std::pair<std::vector<std::string>, std::vector<std::string>>
+fsai::common::Runtime::split_arguments(const std::vector<std::string>& args)
+{
+  std::vector<std::string> app, petsc;
+  for (std::size_t i = 0; i < args.size(); ++i)
+  {
+    if (is_petsc_option(args[i]))
+    {
+      petsc.push_back(args[i]);
+      // An option takes the next token as its value unless that is another
+      // option (flags such as -ksp_view take none)
+      if (i + 1 < args.size()
+          and (args[i + 1].empty() or args[i + 1][0] != '-'
+               or is_number(args[i + 1])))
+      {
+        petsc.push_back(args[++i]);
+      }
+    }
+    else
+      app.push_back(args[i]);
+  }
+  return {app, petsc};
+}
+//-----------------------------------------------------------------------------
+fsai::common::Runtime::Runtime(int argc, char* argv[])
+{
+  _program
+      = std::filesystem::path(argc > 0 ? argv[0] : "fsai").filename().string();
+  std::vector<std::string> args(argv + std::min(argc, 1), argv + argc);
+  std::tie(_app_args, _petsc_args) = split_arguments(args);
+
+  _petsc_argv.push_back(argv[0]);
+  for (std::string& a : _petsc_args)
+    _petsc_argv.push_back(a.data());
+  _petsc_argv.push_back(nullptr);
+
+  dolfinx::init_logging(argc, argv);
+  int petsc_argc = static_cast<int>(_petsc_argv.size()) - 1;
+  char** petsc_argv = _petsc_argv.data();
+  PetscErrorCode ierr
+      = SlepcInitialize(&petsc_argc, &petsc_argv, nullptr, nullptr);
+  if (ierr != 0)
+  {
+    std::cerr << _program << ": error: SlepcInitialize failed (" << ierr << ")"
+              << std::endl;
+    std::exit(1);
+  }
+  MPI_Comm_rank(MPI_COMM_WORLD, &_rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &_size);
+}
+//-----------------------------------------------------------------------------
+fsai::common::Runtime::~Runtime() { SlepcFinalize(); }
+//-----------------------------------------------------------------------------
+void fsai::common::set_option_default(const std::string& name,
+                                      const std::string& value)
+{
+  const std::string key = "-" + name;
+  PetscBool has = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, key.c_str(), &has);
+  if (!has)
+    PetscOptionsSetValue(nullptr, key.c_str(), value.c_str());
+}
+//-----------------------------------------------------------------------------
+int fsai::common::run_main(int argc, char* argv[],
+                           const std::function<void(Runtime&)>& body)
+{
+  Runtime runtime(argc, argv);
+  const std::string& prog = runtime.program();
+  try
+  {
+    body(runtime);
+    print_timings(runtime.comm());
+    return 0;
+  }
+  catch (const HelpRequested&)
+  {
+    return 0;
+  }
+  catch (const InputError& e)
+  {
+    if (runtime.rank() == 0)
+      std::cerr << prog << ": error: " << e.what() << std::endl;
+    return 2;
+  }
+  catch (const std::exception& e)
+  {
+    std::string where = runtime.size() > 1
+                            ? " [rank " + std::to_string(runtime.rank()) + "]"
+                            : "";
+    std::cerr << prog << ": error" << where << ": " << e.what() << std::endl;
+    if (runtime.size() > 1)
+      MPI_Abort(runtime.comm(), 1);
+    return 1;
+  }
+}
+//-----------------------------------------------------------------------------

@@ -1,0 +1,57 @@
+// Copyright (C) 2026 fsai developers
+#include "RunSummary.h"
+#include "../common/timer.h"
+#include "output_dir.h"
+#include <filesystem>
+#include <fstream>
+
+//-----------------------------------------------------------------------------
+fsai::io::RunSummary::RunSummary(MPI_Comm comm, std::string program)
+    : _comm(comm), _program(std::move(program)),
+      _start(std::chrono::steady_clock::now())
+{
+}
+//-----------------------------------------------------------------------------
+void fsai::io::RunSummary::set_parameters(nlohmann::json parameters)
+{
+  _parameters = std::move(parameters);
+}
+//-----------------------------------------------------------------------------
+double fsai::io::RunSummary::wall_s() const
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now()
+                                       - _start)
+      .count();
+}
+//-----------------------------------------------------------------------------
+nlohmann::json fsai::io::RunSummary::json() const
+{
+  int size = 1;
+  MPI_Comm_size(_comm, &size);
+  nlohmann::json j = _results;
+  j["program"] = _program;
+  j["parameters"] = _parameters;
+  j["mpi_size"] = size;
+  j["wall_s"] = wall_s();
+  j["timings"] = common::timings_json();
+  return j;
+}
+//-----------------------------------------------------------------------------
+void fsai::io::RunSummary::write(const std::string& path) const
+{
+  const nlohmann::json j = json(); // Collective parts first
+  int rank = 0;
+  MPI_Comm_rank(_comm, &rank);
+  if (rank != 0)
+    return;
+  ensure_parent_dir(path);
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << '\n';
+    if (!out)
+      throw std::runtime_error("cannot write '" + tmp + "' (disk full?)");
+  }
+  std::filesystem::rename(tmp, path);
+}
+//-----------------------------------------------------------------------------

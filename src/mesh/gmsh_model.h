@@ -1,0 +1,53 @@
+// Copyright (C) 2026 fsai developers
+// In-process gmsh (C++ API, libgmsh-dev) -> distributed DOLFINx mesh.
+#pragma once
+
+#include "MeshData.h"
+#include <functional>
+#include <mpi.h>
+#include <string>
+
+namespace fsai::mesh
+{
+/// gmsh::initialize/finalize on the root rank, quiet unless `verbose`.
+/// Other ranks do nothing: the model is built on the root and the mesh
+/// distributed by model_to_mesh.
+class GmshSession
+{
+public:
+  explicit GmshSession(MPI_Comm comm, int root = 0, bool verbose = false);
+  ~GmshSession();
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+  /// True on the rank that owns the gmsh model
+  bool active() const { return _active; }
+
+private:
+  bool _active;
+};
+
+/// Create a distributed mesh from the current gmsh model on `root`, which
+/// must be meshed. Cells are the elements of the physical groups of the
+/// highest dimension present (at least one required); facet tags come from
+/// the physical groups of one dimension lower. Affine (first-order) cells
+/// only: triangles or tetrahedra.
+/// @param[in] comm Communicator of the mesh (collective)
+/// @param[in] root Rank holding the gmsh model
+/// @param[in] gdim Geometric dimension (2 or 3)
+MeshData model_to_mesh(MPI_Comm comm, int root, int gdim);
+
+/// Run `build` (gmsh API calls that create and mesh a model) on rank 0
+/// inside a GmshSession, then distribute the mesh with model_to_mesh. An
+/// exception in `build` is re-thrown on every rank (no rank is left
+/// waiting).
+MeshData build_with_gmsh(MPI_Comm comm, int gdim,
+                         const std::function<void()>& build);
+
+/// Build a mesh from a gmsh `.geo` file: the file is opened and meshed in
+/// dimension `gdim` on rank 0 and distributed.
+/// @param[in] h Characteristic length passed as the gmsh option
+///   Mesh.MeshSizeMax (ignored if <= 0); a `.geo` file may also read the
+///   ONELAB parameter "fsai/h"
+MeshData from_geo_file(MPI_Comm comm, const std::string& path, int gdim,
+                       double h = -1.0);
+} // namespace fsai::mesh

@@ -1,0 +1,63 @@
+// Copyright (C) 2026 fsai developers
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <io/CsvWriter.h>
+#include <io/Progress.h>
+#include <io/RunSummary.h>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <unistd.h>
+
+namespace
+{
+std::string rank0_temp(const std::string& name)
+{
+  return "/tmp/fsai_test_io_" + std::to_string(getpid()) + "_" + name;
+}
+} // namespace
+
+TEST_CASE("CsvWriter writes a header and round-trip exact rows", "[io]")
+{
+  const std::string path = rank0_temp("series.csv");
+  {
+    fsai::io::CsvWriter csv(MPI_COMM_SELF, path, {"t_s", "q_m3s"});
+    csv.row({0.1, 1.0 / 3.0});
+    csv.row({0.2, -2.5e-7});
+    CHECK_THROWS_AS(csv.row({1.0}), std::logic_error);
+  }
+  std::ifstream in(path);
+  std::string header, r1, r2;
+  std::getline(in, header);
+  std::getline(in, r1);
+  std::getline(in, r2);
+  CHECK(header == "t_s,q_m3s");
+  CHECK(std::stod(r1.substr(r1.find(',') + 1)) == 1.0 / 3.0);
+  CHECK(r2 == "0.20000000000000001,-2.4999999999999999e-07");
+}
+
+TEST_CASE("RunSummary writes parameters, results and wall time", "[io]")
+{
+  const std::string path = rank0_temp("summary.json");
+  fsai::io::RunSummary s(MPI_COMM_SELF, "fsai_test");
+  s.set_parameters({{"mesh", {{"h", 0.1}}}});
+  s.set("f0_hz", 117.5);
+  s.set("formants_hz", std::vector<double>{300, 870});
+  s.write(path);
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(path));
+  CHECK(j["program"] == "fsai_test");
+  CHECK(j["f0_hz"] == 117.5);
+  CHECK(j["formants_hz"][1] == 870);
+  CHECK(j["parameters"]["mesh"]["h"] == 0.1);
+  CHECK(j["wall_s"].get<double>() >= 0.0);
+  CHECK(j.contains("timings"));
+}
+
+TEST_CASE("Progress estimates time left linearly", "[io]")
+{
+  CHECK(fsai::io::Progress::eta(25, 100, 10.0) == Approx(30.0));
+  CHECK(std::isnan(fsai::io::Progress::eta(0, 100, 1.0)));
+  CHECK(fsai::io::Progress::format_duration(12.34) == "12.3s");
+  CHECK(fsai::io::Progress::format_duration(187) == "3m07s");
+  CHECK(fsai::io::Progress::format_duration(3720) == "1h02m");
+}
