@@ -4,7 +4,7 @@
 // failure on any rank fails the run. Catch2's own options (-s, -r, [tag])
 // are not passed to PETSc.
 #define CATCH_CONFIG_RUNNER
-#include <catch2/catch.hpp>
+#include "catch.h"
 #include <common/Runtime.h>
 
 int main(int argc, char* argv[])

@@ -1,25 +1,21 @@
 // Copyright (C) 2026 fsai developers
-#include <catch2/catch.hpp>
+#include "catch.h"
 #include <cmath>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/mesh/generation.h>
+#include <fsai_forms/poisson.h>
 #include <fstream>
 #include <io/CsvWriter.h>
 #include <io/Progress.h>
 #include <io/RunSummary.h>
+#include <io/TimeSeriesWriter.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <unistd.h>
-
-namespace
-{
-std::string rank0_temp(const std::string& name)
-{
-  return "/tmp/fsai_test_io_" + std::to_string(getpid()) + "_" + name;
-}
-} // namespace
 
 TEST_CASE("CsvWriter writes a header and round-trip exact rows", "[io]")
 {
-  const std::string path = rank0_temp("series.csv");
+  fsai::test::TempDir dir;
+  const std::string path = dir / "series.csv";
   {
     fsai::io::CsvWriter csv(MPI_COMM_SELF, path, {"t_s", "q_m3s"});
     csv.row({0.1, 1.0 / 3.0});
@@ -38,7 +34,8 @@ TEST_CASE("CsvWriter writes a header and round-trip exact rows", "[io]")
 
 TEST_CASE("RunSummary writes parameters, results and wall time", "[io]")
 {
-  const std::string path = rank0_temp("summary.json");
+  fsai::test::TempDir dir;
+  const std::string path = dir / "summary.json";
   fsai::io::RunSummary s(MPI_COMM_SELF, "fsai_test");
   s.set_parameters({{"mesh", {{"h", 0.1}}}});
   s.set("f0_hz", 117.5);
@@ -60,4 +57,46 @@ TEST_CASE("Progress estimates time left linearly", "[io]")
   CHECK(fsai::io::Progress::format_duration(12.34) == "12.3s");
   CHECK(fsai::io::Progress::format_duration(187) == "3m07s");
   CHECK(fsai::io::Progress::format_duration(3720) == "1h02m");
+}
+
+TEST_CASE("TimeSeriesWriter writes the mesh once and one entry per step",
+          "[io][mpi]")
+{
+  auto mesh
+      = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_rectangle(
+          MPI_COMM_WORLD, {{{0.0, 0.0}, {1.0, 1.0}}}, {4, 4},
+          dolfinx::mesh::CellType::triangle,
+          dolfinx::mesh::GhostMode::shared_facet));
+  auto V = std::make_shared<dolfinx::fem::FunctionSpace>(
+      dolfinx::fem::create_functionspace(
+          fsai::forms::poisson::functionspace_a(2, 1), "u", mesh));
+  auto u = std::make_shared<dolfinx::fem::Function<double>>(V);
+  u->name = "pressure";
+
+  fsai::test::TempDir dir;
+  const std::string path = dir / "series.xdmf";
+  {
+    fsai::io::TimeSeriesWriter writer(path, {u});
+    for (double t : {0.0, 0.5, 1.0})
+    {
+      u->x()->set(t);
+      writer.write(t);
+    }
+    CHECK(writer.steps() == 3);
+  }
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string xml = text.str();
+  auto count = [&xml](const std::string& what)
+  {
+    std::size_t n = 0;
+    for (auto p = xml.find(what); p != std::string::npos;
+         p = xml.find(what, p + 1))
+      ++n;
+    return n;
+  };
+  CHECK(count("<Time Value=") == 3);
+  CHECK(count("<Attribute Name=\"pressure\"") == 3);
+  CHECK(count("<Geometry") == 1); // Mesh written once
 }

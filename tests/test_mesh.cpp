@@ -2,8 +2,8 @@
 // gmsh-built meshes: physical groups become DOLFINx tags with the right
 // measures, in serial and distributed; .geo files and XDMF round trips keep
 // them
+#include "catch.h"
 #include <array>
-#include <catch2/catch.hpp>
 #include <cmath>
 #include <common/errors.h>
 #include <dolfinx/common/IndexMap.h>
@@ -12,7 +12,6 @@
 #include <mesh/builders.h>
 #include <mesh/gmsh_model.h>
 #include <mesh/xdmf_mesh.h>
-#include <unistd.h>
 
 namespace
 {
@@ -96,15 +95,6 @@ void check_rectangle_tags(const fsai::mesh::MeshData& m, double lx, double ly)
   CHECK(tagged_measure(*m.mesh, tdim, nullptr, 0)
         == Approx(lx * ly).epsilon(tol));
 }
-
-std::string temp_path(const std::string& name)
-{
-  // Same path on every rank (collective writers)
-  std::string pid = std::to_string(getpid());
-  MPI_Bcast(pid.data(), static_cast<int>(pid.size()), MPI_CHAR, 0,
-            MPI_COMM_WORLD);
-  return "/tmp/fsai_test_" + pid + "_" + name;
-}
 } // namespace
 
 TEST_CASE("gmsh rectangle: facet groups have the side lengths", "[mesh][mpi]")
@@ -148,7 +138,8 @@ TEST_CASE(".geo file and XDMF round trip keep tags and names", "[mesh][mpi]")
       2, 0.05);
   check_rectangle_tags(m, 1.0, 1.0);
 
-  const std::string path = temp_path("square.xdmf");
+  fsai::test::TempDir dir;
+  const std::string path = dir / "square.xdmf";
   fsai::mesh::write_xdmf(path, m);
   auto r = fsai::mesh::read_xdmf(MPI_COMM_WORLD, path);
   CHECK(r.facet_names == m.facet_names);

@@ -1,12 +1,11 @@
 // Copyright (C) 2026 fsai developers
 // Parameters: defaults < TOML < command line; clear errors for bad input
-#include <catch2/catch.hpp>
+#include "catch.h"
 #include <common/Parameters.h>
 #include <common/Runtime.h>
 #include <common/errors.h>
 #include <fstream>
 #include <petscsys.h>
-#include <unistd.h>
 
 namespace
 {
@@ -28,13 +27,13 @@ struct Demo
   }
 };
 
-/// Write `text` to a fresh file and return its path
-std::string write_file(const std::string& name, const std::string& text)
+/// Write `text` to a file `name` in a scratch folder (per rank)
+std::string write_file(const fsai::test::TempDir& dir, const std::string& name,
+                       const std::string& text)
 {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  std::string path = "/tmp/fsai_test_" + std::to_string(getpid()) + "_"
-                     + std::to_string(rank) + "_" + name;
+  std::string path = dir / (std::to_string(rank) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }
@@ -61,9 +60,11 @@ TEST_CASE("Parameters keep defaults without input", "[common]")
 
 TEST_CASE("Command line overrides TOML, TOML overrides defaults", "[common]")
 {
-  std::string cfg = write_file("a.toml", "[mesh]\nh = 0.5\nn = 7\n"
-                                         "[run]\nmodel = \"axisym\"\n"
-                                         "xs = [3, 4.5]\nflag = true\n");
+  fsai::test::TempDir dir;
+  std::string cfg = write_file(dir, "a.toml",
+                               "[mesh]\nh = 0.5\nn = 7\n"
+                               "[run]\nmodel = \"axisym\"\n"
+                               "xs = [3, 4.5]\nflag = true\n");
   Demo d = parse({"--config", cfg, "--mesh.h", "0.25"});
   CHECK(d.h == 0.25);         // Command line
   CHECK(d.n == 7);            // TOML
@@ -74,12 +75,13 @@ TEST_CASE("Command line overrides TOML, TOML overrides defaults", "[common]")
   CHECK(d.xs[1] == 4.5);
 
   // An integer in TOML is accepted for a floating-point parameter
-  std::string cfg2 = write_file("b.toml", "mesh.h = 2\n");
+  std::string cfg2 = write_file(dir, "b.toml", "mesh.h = 2\n");
   CHECK(parse({"--config", cfg2}).h == 2.0);
 }
 
 TEST_CASE("Bad input raises one-line InputError", "[common]")
 {
+  fsai::test::TempDir dir;
   using Catch::Matchers::Contains;
   auto message = [](const std::vector<std::string>& args)
   {
@@ -110,17 +112,17 @@ TEST_CASE("Bad input raises one-line InputError", "[common]")
   m = message({"--config", "/nonexistent/fsai.toml"});
   CHECK_THAT(m, Contains("not found"));
 
-  m = message({"--config", write_file("c.toml", "[mesh]\nh 0.1\n")});
+  m = message({"--config", write_file(dir, "c.toml", "[mesh]\nh 0.1\n")});
   CHECK_THAT(m, Contains("c.toml"));
   CHECK(one_line(m));
 
-  m = message({"--config", write_file("d.toml", "[mesh]\nhh = 0.1\n")});
+  m = message({"--config", write_file(dir, "d.toml", "[mesh]\nhh = 0.1\n")});
   CHECK_THAT(m, Contains("mesh.hh") && Contains("unknown"));
 
-  m = message({"--config", write_file("e.toml", "[mesh]\nh = \"big\"\n")});
+  m = message({"--config", write_file(dir, "e.toml", "[mesh]\nh = \"big\"\n")});
   CHECK_THAT(m, Contains("mesh.h") && Contains("invalid"));
 
-  m = message({"--config", write_file("f.toml", "run.model = \"x\"\n")});
+  m = message({"--config", write_file(dir, "f.toml", "run.model = \"x\"\n")});
   CHECK_THAT(m, Contains("run.model"));
 }
 
@@ -151,6 +153,7 @@ TEST_CASE("PETSc options are split from application arguments", "[common]")
 TEST_CASE("Code defaults do not overwrite PETSc options already set",
           "[common]")
 {
+  fsai::test::TempDir dir;
   PetscOptionsSetValue(nullptr, "-fsai_test_ksp_type", "gmres");
   fsai::common::set_option_default("fsai_test_ksp_type", "cg");
   fsai::common::set_option_default("fsai_test_pc_type", "jacobi");
@@ -164,9 +167,9 @@ TEST_CASE("Code defaults do not overwrite PETSc options already set",
   CHECK(std::string(value) == "jacobi");
 
   // A [petsc] table in the config file sets defaults too
-  std::string cfg
-      = write_file("g.toml", "[petsc]\nfsai_test_pc_type = \"ilu\"\n"
-                             "fsai_test2_ksp_rtol = 1e-9\n");
+  std::string cfg = write_file(dir, "g.toml",
+                               "[petsc]\nfsai_test_pc_type = \"ilu\"\n"
+                               "fsai_test2_ksp_rtol = 1e-9\n");
   parse({"--config", cfg});
   PetscOptionsGetString(nullptr, nullptr, "-fsai_test_pc_type", value,
                         sizeof(value), &set);

@@ -3,7 +3,7 @@
 // and tetrahedra, P1 and P2, must converge in L2 at the theoretical rate
 // k + 1 (measured between the two finest meshes, within ±0.1). Runs in
 // serial and under mpirun -n 2 (same test binary).
-#include <catch2/catch.hpp>
+#include "catch.h"
 #include <common/log.h>
 #include <dolfinx/mesh/generation.h>
 #include <verification/poisson_mms.h>

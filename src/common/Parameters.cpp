@@ -91,6 +91,10 @@ fsai::common::Parameters::Parameters(const std::string& program,
                   "command-line values take precedence")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   _app.get_formatter()->column_width(36);
+  _app.footer("Parameters can also be set in the --config file as "
+              "[section] key = value.\nPETSc options for the solvers "
+              "(e.g. -poisson_ksp_type gmres -poisson_ksp_monitor) pass "
+              "through and override the code's defaults.");
 }
 //-----------------------------------------------------------------------------
 fsai::common::Parameters::~Parameters() = default;

@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "gmsh_model.h"
 #include "../common/errors.h"
+#include "../common/timer.h"
 #include <algorithm>
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/fem/CoordinateElement.h>
@@ -176,6 +177,7 @@ fsai::mesh::MeshData fsai::mesh::model_to_mesh(MPI_Comm comm, int root,
 {
   if (gdim != 2 and gdim != 3)
     throw std::runtime_error("model_to_mesh: gdim must be 2 or 3");
+  common::ScopedTimer timer("mesh: distribute");
   const bool is_root = dolfinx::MPI::rank(comm) == root;
   const int tdim = gdim;
   const dolfinx::mesh::CellType cell_type
@@ -266,6 +268,7 @@ fsai::mesh::MeshData
 fsai::mesh::build_with_gmsh(MPI_Comm comm, int gdim,
                             const std::function<void()>& build)
 {
+  common::ScopedTimer timer("mesh: gmsh");
   GmshSession session(comm);
   std::string error;
   if (session.active())
@@ -282,6 +285,7 @@ fsai::mesh::build_with_gmsh(MPI_Comm comm, int gdim,
   broadcast(comm, 0, error);
   if (!error.empty())
     throw std::runtime_error("gmsh: " + error);
+  timer.stop();
   return model_to_mesh(comm, 0, gdim);
 }
 //-----------------------------------------------------------------------------

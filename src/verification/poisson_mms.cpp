@@ -44,7 +44,6 @@ fsai::verification::PoissonResult
 fsai::verification::solve_poisson_mms(std::shared_ptr<mesh::Mesh> mesh,
                                       int degree)
 {
-  common::ScopedTimer timer("poisson: solve_mms");
   namespace forms = fsai::forms::poisson;
   const int tdim = mesh->topology().dim();
 
@@ -72,6 +71,7 @@ fsai::verification::solve_poisson_mms(std::shared_ptr<mesh::Mesh> mesh,
   auto L = std::make_shared<fem::Form<T>>(fem::create_form<T>(
       forms::L(tdim, degree), {V}, Coefficients{}, Constants{}, {}));
 
+  common::ScopedTimer t_assemble("poisson: assemble");
   // Assemble (DOLFINx order: matrix with bcs, diagonal, vector, lifting,
   // ghost accumulation, bc values)
   la::petsc::Matrix A(fem::petsc::create_matrix(*a), false);
@@ -95,7 +95,10 @@ fsai::verification::solve_poisson_mms(std::shared_ptr<mesh::Mesh> mesh,
   b.scatter_rev(std::plus<T>());
   fem::set_bc<T>(b.mutable_array(), bcs);
 
+  t_assemble.stop();
+
   // Solve
+  common::ScopedTimer t_solve("poisson: solve");
   common::set_option_default("poisson_ksp_type", "cg");
   common::set_option_default("poisson_pc_type", "hypre");
   common::set_option_default("poisson_pc_hypre_type", "boomeramg");
@@ -119,6 +122,7 @@ fsai::verification::solve_poisson_mms(std::shared_ptr<mesh::Mesh> mesh,
                              + std::to_string(reason) + ")");
   }
   u->x()->scatter_fwd();
+  t_solve.stop();
 
   // L2 error
   auto M = std::make_shared<fem::Form<T>>(
