@@ -3,12 +3,14 @@
 #include "errors.h"
 #include "timer.h"
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 #include <dolfinx/common/log.h>
 #include <filesystem>
 #include <iostream>
 #include <petscsys.h>
 #include <slepcsys.h>
+#include <thread>
 
 namespace
 {
@@ -78,9 +80,32 @@ fsai::common::Runtime::Runtime(int argc, char* argv[])
   }
   MPI_Comm_rank(MPI_COMM_WORLD, &_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &_size);
+  MPI_Comm_dup(MPI_COMM_WORLD, &_error_comm);
 }
 //-----------------------------------------------------------------------------
-fsai::common::Runtime::~Runtime() { SlepcFinalize(); }
+fsai::common::Runtime::~Runtime()
+{
+  MPI_Comm_free(&_error_comm);
+  SlepcFinalize();
+}
+//-----------------------------------------------------------------------------
+bool fsai::common::all_ranks_arrive(MPI_Comm comm, double timeout_s)
+{
+  MPI_Request request;
+  MPI_Ibarrier(comm, &request);
+  const auto deadline = std::chrono::steady_clock::now()
+                        + std::chrono::duration<double>(timeout_s);
+  int done = 0;
+  while (true)
+  {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done)
+      return true;
+    if (std::chrono::steady_clock::now() > deadline)
+      return false; // The request stays pending: the caller aborts
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
 //-----------------------------------------------------------------------------
 void fsai::common::set_option_default(const std::string& name,
                                       const std::string& value)
@@ -96,7 +121,8 @@ int fsai::common::run_main(int argc, char* argv[],
                            const std::function<void(Runtime&)>& body)
 {
   Runtime runtime(argc, argv);
-  const std::string& prog = runtime.program();
+  std::string message;
+  int status = 0;
   try
   {
     body(runtime);
@@ -109,19 +135,25 @@ int fsai::common::run_main(int argc, char* argv[],
   }
   catch (const InputError& e)
   {
-    if (runtime.rank() == 0)
-      std::cerr << prog << ": error: " << e.what() << std::endl;
-    return 2;
+    message = e.what();
+    status = 2;
   }
   catch (const std::exception& e)
   {
-    std::string where = runtime.size() > 1
-                            ? " [rank " + std::to_string(runtime.rank()) + "]"
-                            : "";
-    std::cerr << prog << ": error" << where << ": " << e.what() << std::endl;
-    if (runtime.size() > 1)
-      MPI_Abort(runtime.comm(), 1);
-    return 1;
+    message = e.what();
+    status = 1;
   }
+
+  const std::string& prog = runtime.program();
+  if (runtime.size() == 1 or all_ranks_arrive(runtime.error_comm(), 10.0))
+  {
+    if (runtime.rank() == 0)
+      std::cerr << prog << ": error: " << message << std::endl;
+    return status;
+  }
+  std::cerr << prog << ": error [rank " << runtime.rank() << "]: " << message
+            << std::endl;
+  MPI_Abort(MPI_COMM_WORLD, status);
+  return status;
 }
 //-----------------------------------------------------------------------------

@@ -30,6 +30,10 @@ public:
   int rank() const { return _rank; }
   int size() const { return _size; }
 
+  /// Communicator reserved for error agreement (a duplicate of
+  /// MPI_COMM_WORLD, so it never matches a collective of the solvers)
+  MPI_Comm error_comm() const { return _error_comm; }
+
   /// Program name (basename of argv[0])
   const std::string& program() const { return _program; }
 
@@ -48,7 +52,15 @@ private:
   std::vector<char*> _petsc_argv; // Storage PETSc keeps pointers to
   int _rank = 0;
   int _size = 1;
+  MPI_Comm _error_comm = MPI_COMM_NULL;
 };
+
+/// True if every rank of `comm` calls this within `timeout_s` seconds (a
+/// non-blocking barrier polled until the deadline). Used on the error path
+/// to tell an error every rank met (bad input, a diverged solve: exit
+/// cleanly) from an error on some ranks only (abort, since the others may
+/// wait forever in a collective).
+bool all_ranks_arrive(MPI_Comm comm, double timeout_s);
 
 /// Set the PETSc option `-name value` unless it is already set (on the
 /// command line or from a config file's [petsc] table): code defaults
@@ -57,12 +69,14 @@ void set_option_default(const std::string& name, const std::string& value);
 
 /// Run a demo's body with the common error policy and return the exit
 /// status for main:
-/// - InputError (bad input, raised on every rank): one line
-///   "<program>: error: <message>" on rank 0's stderr, status 2;
 /// - HelpRequested: status 0;
-/// - any other exception: "<program>: error: <message>" on stderr of the
-///   rank that caught it; with several ranks MPI_Abort, so no rank waits
-///   forever for one that failed; status 1 in serial.
+/// - an exception raised on every rank: one line
+///   "<program>: error: <message>" (rank 0's message) on stderr, status 2
+///   for InputError (bad input), 1 otherwise;
+/// - an exception raised on some ranks only (they wait up to 10 s for the
+///   others): each of those ranks prints
+///   "<program>: error [rank r]: <message>" and calls MPI_Abort, so no rank
+///   waits forever for one that failed.
 /// On success the timing table is printed.
 int run_main(int argc, char* argv[], const std::function<void(Runtime&)>& body);
 } // namespace fsai::common
