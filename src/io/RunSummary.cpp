@@ -39,7 +39,7 @@ nlohmann::json fsai::io::RunSummary::json() const
 //-----------------------------------------------------------------------------
 void fsai::io::RunSummary::write(const std::string& path) const
 {
-  const nlohmann::json j = json(); // Collective parts first
+  const nlohmann::json j = json();
   int rank = 0;
   MPI_Comm_rank(_comm, &rank);
   if (rank != 0)
