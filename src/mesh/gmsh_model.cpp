@@ -118,6 +118,28 @@ void broadcast(MPI_Comm comm, int root, std::string& s)
   MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, root, comm);
 }
 
+/// Run `fn` on `root` only; an exception there is re-thrown on every rank
+/// (message prefixed by `prefix`), so no rank waits in a later collective
+void run_on_root(MPI_Comm comm, int root, const std::function<void()>& fn,
+                 const std::string& prefix)
+{
+  std::string error;
+  if (dolfinx::MPI::rank(comm) == root)
+  {
+    try
+    {
+      fn();
+    }
+    catch (const std::exception& e)
+    {
+      error = e.what();
+    }
+  }
+  broadcast(comm, root, error);
+  if (!error.empty())
+    throw std::runtime_error(prefix + error);
+}
+
 /// Gmsh node tags -> 0-based rows of the node array, permuted from gmsh's to
 /// DOLFINx's local node order
 std::vector<std::int64_t>
@@ -178,7 +200,6 @@ fsai::mesh::MeshData fsai::mesh::model_to_mesh(MPI_Comm comm, int root,
   if (gdim != 2 and gdim != 3)
     throw std::runtime_error("model_to_mesh: gdim must be 2 or 3");
   common::ScopedTimer timer("mesh: distribute");
-  const bool is_root = dolfinx::MPI::rank(comm) == root;
   const int tdim = gdim;
   const dolfinx::mesh::CellType cell_type
       = tdim == 2 ? dolfinx::mesh::CellType::triangle
@@ -188,57 +209,49 @@ fsai::mesh::MeshData fsai::mesh::model_to_mesh(MPI_Comm comm, int root,
   std::vector<double> x;
   std::vector<std::int64_t> cells, facets;
   std::vector<std::int32_t> cell_values, facet_values;
-  std::string cell_names, facet_names, error;
-  if (is_root)
-  {
-    try
-    {
-      // Nodes: gmsh tags need not be contiguous; rows in tag order
-      std::vector<std::size_t> node_tags;
-      std::vector<double> coords, param;
-      gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1);
-      std::unordered_map<std::size_t, std::int64_t> index;
-      x.resize(node_tags.size() * gdim);
-      for (std::size_t i = 0; i < node_tags.size(); ++i)
+  std::string cell_names, facet_names;
+  run_on_root(
+      comm, root,
+      [&]()
       {
-        index[node_tags[i]] = i;
-        for (int j = 0; j < gdim; ++j)
-          x[i * gdim + j] = coords[3 * i + j];
-      }
+        // Nodes: gmsh tags need not be contiguous; rows in tag order
+        std::vector<std::size_t> node_tags;
+        std::vector<double> coords, param;
+        gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1);
+        std::unordered_map<std::size_t, std::int64_t> index;
+        x.resize(node_tags.size() * gdim);
+        for (std::size_t i = 0; i < node_tags.size(); ++i)
+        {
+          index[node_tags[i]] = i;
+          for (int j = 0; j < gdim; ++j)
+            x[i * gdim + j] = coords[3 * i + j];
+        }
 
-      TaggedEntities c = tagged_entities(tdim);
-      if (c.tags.empty())
-      {
-        throw std::runtime_error("gmsh model has no meshed physical group of "
-                                 "dimension "
-                                 + std::to_string(tdim));
-      }
-      if (c.nodes_per_entity != nv_cell)
-        throw std::runtime_error("gmsh model: only affine (order 1) "
-                                 "triangles/tetrahedra are supported");
-      cells = to_dolfinx(c, cell_type, index);
-      cell_values = c.tags;
-      cell_names = pack_names(c.names);
+        TaggedEntities c = tagged_entities(tdim);
+        if (c.tags.empty())
+        {
+          throw std::runtime_error("gmsh model has no meshed physical group of "
+                                   "dimension "
+                                   + std::to_string(tdim));
+        }
+        if (c.nodes_per_entity != nv_cell)
+          throw std::runtime_error("gmsh model: only affine (order 1) "
+                                   "triangles/tetrahedra are supported");
+        cells = to_dolfinx(c, cell_type, index);
+        cell_values = c.tags;
+        cell_names = pack_names(c.names);
 
-      TaggedEntities f = tagged_entities(tdim - 1);
-      if (!f.tags.empty())
-      {
-        facets = to_dolfinx(
-            f, dolfinx::mesh::cell_entity_type(cell_type, tdim - 1, 0), index);
-        facet_values = f.tags;
-        facet_names = pack_names(f.names);
-      }
-    }
-    catch (const std::exception& e)
-    {
-      error = e.what();
-    }
-  }
-  // Report a failure on the root to every rank, so none waits in a
-  // collective below
-  broadcast(comm, root, error);
-  if (!error.empty())
-    throw std::runtime_error(error);
+        TaggedEntities f = tagged_entities(tdim - 1);
+        if (!f.tags.empty())
+        {
+          facets = to_dolfinx(
+              f, dolfinx::mesh::cell_entity_type(cell_type, tdim - 1, 0),
+              index);
+          facet_values = f.tags;
+          facet_names = pack_names(f.names);
+        }
+      },
+      "");
   broadcast(comm, root, cell_names);
   broadcast(comm, root, facet_names);
 
@@ -269,22 +282,8 @@ fsai::mesh::build_with_gmsh(MPI_Comm comm, int gdim,
                             const std::function<void()>& build)
 {
   common::ScopedTimer timer("mesh: gmsh");
-  GmshSession session(comm);
-  std::string error;
-  if (session.active())
-  {
-    try
-    {
-      build();
-    }
-    catch (const std::exception& e)
-    {
-      error = e.what();
-    }
-  }
-  broadcast(comm, 0, error);
-  if (!error.empty())
-    throw std::runtime_error("gmsh: " + error);
+  GmshSession session(comm); // Active on rank 0, the root below
+  run_on_root(comm, 0, build, "gmsh: ");
   timer.stop();
   return model_to_mesh(comm, 0, gdim);
 }
