@@ -14,5 +14,5 @@ fi
 status=0
 ctest --output-on-failure "$@" || status=$?
 # Measured figures that tests print (convergence rates, ...), for the record
-grep -h "^Poisson MMS" Testing/Temporary/LastTest.log 2>/dev/null | sort -u || true
+grep -hE "^(Poisson MMS|Acoustics)" Testing/Temporary/LastTest.log 2>/dev/null | sort -u || true
 exit $status

@@ -134,6 +134,15 @@ void run_on_root(MPI_Comm comm, int root, const std::function<void()>& fn,
     {
       error = e.what();
     }
+    catch (const std::string& e)
+    {
+      // gmsh 4.8 throws its error messages as std::string
+      error = "gmsh: " + (e.empty() ? std::string("unknown error") : e);
+    }
+    catch (...)
+    {
+      error = "gmsh: unknown error";
+    }
   }
   broadcast(comm, root, error);
   if (!error.empty())

@@ -1,0 +1,144 @@
+// Copyright (C) 2026 fsai developers
+//
+// Acoustic wave equation with Lighthill's source, shared/DESIGN.md E14, E15,
+// E21; forms in forms/acoustics.py:
+//   M P̈ + C Ṗ + K P = b(t)
+// integrated by Newmark's method (β = 1/4, γ = 1/2: average acceleration,
+// second order, unconditionally stable, energy-conserving when C = 0 and
+// b = 0). M, C, K and the effective matrix A = M + γΔt C + βΔt² K are
+// assembled once; A's factorisation (or preconditioner) is reused every
+// step while Δt is fixed. PETSc options prefix "acoustic_" (default: LU
+// with MUMPS).
+#pragma once
+
+#include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/Form.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/la/petsc.h>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace fsai::common
+{
+class Parameters;
+}
+
+namespace fsai::acoustics
+{
+/// Physical and time-integration parameters ([acoustics] section)
+struct WaveParameters
+{
+  double c0 = 343.0; ///< Speed of sound [m/s] (air, 20 °C)
+  double rho0 = 1.2; ///< Air density [kg/m³]
+  double newmark_beta = 0.25;
+  double newmark_gamma = 0.5;
+
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+};
+
+/// How the boundary is treated, by role: local facet indices (owned and
+/// ghost facets may both appear). Facets in no list are sound-hard walls.
+struct WaveBoundaries
+{
+  /// Radiation condition (1/c0) ṗ + ∂p/∂n + β p = 0
+  std::vector<std::int32_t> radiation;
+  /// β [1/m]: 0 (Sommerfeld) or the curvature term of Bayliss–Turkel
+  double radiation_beta = 0.0;
+  /// Volume-velocity source ∂p/∂n = ρ0 du/dt (set_inlet_acceleration)
+  std::vector<std::int32_t> inlet;
+  /// Vibrating wall ∂p/∂n = −ρ0 a·n (wall_acceleration())
+  std::vector<std::int32_t> vibrating;
+  /// Pressure release p' = 0
+  std::vector<std::int32_t> pressure_release;
+};
+
+/// Newmark solver for E21 on a fixed mesh. Usage per step: set the source
+/// data for the new time (set_inlet_acceleration, flow_velocity/taper,
+/// wall_acceleration), then step().
+class WaveSolver
+{
+public:
+  /// @param[in] mesh Acoustic mesh (fixed)
+  /// @param[in] degree Lagrange degree of p' (1 or 2)
+  /// @param[in] axisymmetric Weight by r = x[1] (2D meshes only)
+  /// @param[in] params Physical constants and Newmark parameters
+  /// @param[in] boundaries Boundary roles
+  /// @param[in] dt Time step [s]
+  /// @param[in] sigma Absorbing-layer damping σ (DG0 on `mesh`, zero
+  ///   outside the layer; nullptr: no layer)
+  /// @param[in] lighthill Assemble the Lighthill source every step
+  WaveSolver(std::shared_ptr<const dolfinx::mesh::Mesh> mesh, int degree,
+             bool axisymmetric, const WaveParameters& params,
+             const WaveBoundaries& boundaries, double dt,
+             std::shared_ptr<const dolfinx::fem::Function<double>> sigma
+             = nullptr,
+             bool lighthill = false);
+
+  /// Initial state p(0), ṗ(0) (defaults: zero); computes p̈(0) from the
+  /// equation with the current source data
+  void set_initial_state(const dolfinx::fem::Function<double>& p0,
+                         const dolfinx::fem::Function<double>* v0 = nullptr);
+
+  /// du/dt [m/s²] of the normal velocity into the domain on the inlet, at
+  /// the time of the next step
+  void set_inlet_acceleration(double dudt) { _inlet_dudt = dudt; }
+
+  /// Flow velocity v (P1 vector) of the Lighthill source at the next step
+  dolfinx::fem::Function<double>& flow_velocity();
+  /// Taper χ (P1) of the Lighthill source; 1 by default
+  dolfinx::fem::Function<double>& taper();
+  /// Wall acceleration a (P1 vector) on the vibrating boundary
+  dolfinx::fem::Function<double>& wall_acceleration();
+
+  /// Advance by one time step (t → t + Δt)
+  void step();
+
+  /// Current time [s]
+  double time() const { return _t; }
+  /// Time step [s]
+  double dt() const { return _dt; }
+  /// Discrete energy ½ ṖᵀMṖ + ½ PᵀKP (collective). Conserved exactly (to
+  /// round-off) by the trapezoidal Newmark scheme when C = 0 and b = 0.
+  double energy() const;
+  /// Acoustic pressure p' (ghosts up to date)
+  std::shared_ptr<dolfinx::fem::Function<double>> pressure() const
+  {
+    return _p;
+  }
+  /// ∫_inlet w ds: inlet width (planar), area/2π (axisymmetric), area (3D)
+  double inlet_measure() const { return _inlet_measure; }
+  /// Global number of unknowns
+  std::int64_t dofs() const;
+
+private:
+  using Form = dolfinx::fem::Form<double>;
+  void assemble_source(Vec b);
+
+  double _dt, _t = 0.0, _beta, _gamma, _inlet_dudt = 0.0,
+              _inlet_measure = 0.0;
+  bool _lighthill, _vibrating = false;
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> _V, _Vv, _Vs;
+  std::shared_ptr<dolfinx::fem::Function<double>> _p, _v_flow, _taper, _a_wall;
+  std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
+  std::vector<std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>>> _tags;
+  std::shared_ptr<Form> _L_source, _L_wall;
+  std::vector<std::int32_t> _bc_rows; // owned Dirichlet rows (local)
+  dolfinx::la::petsc::Matrix _M, _C, _K, _A;
+  dolfinx::la::petsc::Vector _p_vec; // wraps _p->x()
+  dolfinx::la::petsc::Vector _v, _a, _b_inlet, _rhs, _work_p, _work_v;
+  std::unique_ptr<dolfinx::la::Vector<double>> _b_assembly;
+  dolfinx::la::petsc::KrylovSolver _solver;
+};
+
+/// Damping σ (DG0, cell midpoints) of an absorbing layer in the given
+/// cells (zero elsewhere), between the spheres/circles of radius r0 and
+/// r0 + d around `centre`:
+/// σ = σ_max ((r − r0)/d)² with σ_max = 3 c0 ln(1/R0) / (2 d), so that a
+/// normally incident wave crossing the layer twice is reduced by R0.
+std::shared_ptr<dolfinx::fem::Function<double>>
+absorbing_layer(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+                std::span<const std::int32_t> cells, std::array<double, 3> centre, double r0, double d, double c0,
+                double R0);
+} // namespace fsai::acoustics

@@ -1,0 +1,268 @@
+// Copyright (C) 2026 fsai developers
+// Acoustics (shared/DESIGN.md E14, E21): Newmark energy conservation,
+// space/time convergence on an exact standing mode, closed-open tube
+// resonances (planar and axisymmetric FE), the 1D chain-matrix model, and
+// area-function input errors.
+#include "catch.h"
+#include <acoustics/WaveSolver.h>
+#include <acoustics/pulse_response.h>
+#include <acoustics/spectrum.h>
+#include <acoustics/tube_model.h>
+#include <common/errors.h>
+#include <common/log.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/mesh/generation.h>
+#include <fstream>
+#include <fsai_forms/acoustics.h>
+#include <mesh/area_function.h>
+#include <mesh/vocal_tract.h>
+
+namespace
+{
+std::shared_ptr<dolfinx::mesh::Mesh> unit_square(std::size_t n)
+{
+  using namespace dolfinx::mesh;
+  return std::make_shared<Mesh>(
+      create_rectangle(MPI_COMM_WORLD, {{{0.0, 0.0}, {1.0, 1.0}}}, {n, n},
+                       CellType::triangle, GhostMode::shared_facet));
+}
+
+/// Exact standing mode cos(πx)cos(πy) as the initial pressure
+std::shared_ptr<dolfinx::fem::Function<double>>
+standing_mode(const fsai::acoustics::WaveSolver& s)
+{
+  auto p0 = std::make_shared<dolfinx::fem::Function<double>>(
+      s.pressure()->function_space());
+  p0->interpolate(
+      [](auto& x) -> xt::xarray<double>
+      {
+        xt::xarray<double> v = xt::zeros<double>({x.shape(1)});
+        for (std::size_t i = 0; i < x.shape(1); ++i)
+          v(i) = std::cos(M_PI * x(0, i)) * std::cos(M_PI * x(1, i));
+        return v;
+      });
+  return p0;
+}
+
+/// L2 error against p_e = cos(c0 π √2 t) cos(πx) cos(πy) at the solver's time
+double mode_error(const fsai::acoustics::WaveSolver& s, double c0, int degree)
+{
+  namespace forms = fsai::forms::acoustics;
+  auto mesh = s.pressure()->function_space()->mesh();
+  using C = std::shared_ptr<const dolfinx::fem::Constant<double>>;
+  auto e = dolfinx::fem::create_form<double>(
+      forms::error_L2(2, degree), {}, {{"ph", s.pressure()}},
+      std::map<std::string, C>{
+          {"c0", std::make_shared<dolfinx::fem::Constant<double>>(c0)},
+          {"t_exact",
+           std::make_shared<dolfinx::fem::Constant<double>>(s.time())}},
+      {}, mesh);
+  double local = dolfinx::fem::assemble_scalar(e), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
+  return std::sqrt(global);
+}
+
+/// First n peaks of the pulse response of a tract observed at probe 1
+std::vector<double> pulse_formants(const fsai::mesh::AreaFunction& af,
+                                   fsai::mesh::VocalTractGeometry g,
+                                   const std::string& radiation, int n)
+{
+  namespace ac = fsai::acoustics;
+  g.open = radiation != "pressure-release";
+  auto m = fsai::mesh::vocal_tract(MPI_COMM_WORLD, af, g);
+  ac::WaveParameters wave;
+  ac::PulseParameters pulse;
+  pulse.duration = 0.05;
+  ac::TractBoundaryModel bm;
+  bm.axisymmetric = g.model == "axisym";
+  bm.area_factor = bm.axisymmetric ? 2 * M_PI : g.depth;
+  bm.radiation = radiation;
+  bm.radiation_radius = g.radius;
+  bm.centre = {af.length(), 0, 0};
+  bm.spherical = bm.axisymmetric;
+  const double x_obs = ac::default_observation_point(
+      af, g.open ? ac::LipEnd::unflanged : ac::LipEnd::pressure_release);
+  auto r = ac::pulse_response(m, wave, pulse, bm,
+                              {{0, 0, 0}, {x_obs, 0, 0}});
+  auto H = ac::transfer_function(r.U, r.p[1], r.dt, pulse.decay());
+  std::vector<double> mag, f;
+  for (auto h : H.h)
+    mag.push_back(std::abs(h));
+  for (auto p : ac::find_peaks(H.f, mag, 50.0, pulse.f_max))
+    if (int(f.size()) < n)
+      f.push_back(p.f);
+  return f;
+}
+
+std::string write_file(const fsai::test::TempDir& dir, const std::string& name,
+                       const std::string& text)
+{
+  const std::string path = dir / name;
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0)
+    std::ofstream(path) << text;
+  MPI_Barrier(MPI_COMM_WORLD);
+  return path;
+}
+} // namespace
+
+TEST_CASE("Acoustic energy of a closed rigid domain is conserved by Newmark",
+          "[acoustics][mpi]")
+{
+  // Undamped, unforced E21 with β = 1/4, γ = 1/2: ½ṖᵀMṖ + ½PᵀKP is an
+  // exact invariant of the discrete scheme; 10^4 steps of a standing mode
+  fsai::acoustics::WaveParameters wave;
+  wave.c0 = 1.0;
+  fsai::acoustics::WaveSolver s(unit_square(12), 1, false, wave, {}, 0.01);
+  s.set_initial_state(*standing_mode(s));
+  const double e0 = s.energy();
+  double worst = 0.0;
+  for (int k = 0; k < 10000; ++k)
+  {
+    s.step();
+    if (k % 100 == 99)
+      worst = std::max(worst, std::abs(s.energy() - e0) / e0);
+  }
+  fsai::log::info("Acoustics energy: 1e4 steps, max relative drift {:.2e}",
+                  worst);
+  CHECK(e0 > 0.0);
+  CHECK(worst < 1e-8);
+}
+
+TEST_CASE("Standing mode converges at second order in space and time",
+          "[acoustics][mpi]")
+{
+  fsai::acoustics::WaveParameters wave;
+  wave.c0 = 1.0;
+  const double T = 0.5;
+  auto run = [&](std::size_t n, int degree, double dt)
+  {
+    fsai::acoustics::WaveSolver s(unit_square(n), degree, false, wave, {}, dt);
+    s.set_initial_state(*standing_mode(s));
+    const int steps = int(std::lround(T / dt));
+    for (int k = 0; k < steps; ++k)
+      s.step();
+    return mode_error(s, wave.c0, degree);
+  };
+  // Space: P1, Δt small enough that the time error is negligible
+  const double e8 = run(8, 1, 1e-3), e16 = run(16, 1, 1e-3),
+               e32 = run(32, 1, 1e-3);
+  const double rs = std::log2(e16 / e32);
+  // Time: P2 on a fine mesh, Δt halved
+  const double t1 = run(24, 2, 0.1), t2 = run(24, 2, 0.05),
+               t3 = run(24, 2, 0.025);
+  const double rt = std::log2(t2 / t3);
+  fsai::log::info("Acoustics MMS: space P1 e = {:.3e} {:.3e} {:.3e} rate {:.3f};"
+                  " time e = {:.3e} {:.3e} {:.3e} rate {:.3f}",
+                  e8, e16, e32, rs, t1, t2, t3, rt);
+  CHECK(rs == Approx(2.0).margin(0.15));
+  CHECK(rt == Approx(2.0).margin(0.15));
+}
+
+TEST_CASE("1D chain-matrix model: closed-open tube resonances",
+          "[acoustics]")
+{
+  const double L = 0.175, c0 = 343.0;
+  auto af = fsai::mesh::resample(fsai::mesh::uniform_tube(L, 3e-4), true, 1e-3);
+  auto r = fsai::acoustics::tube_resonances(
+      af, 4000.0, c0, 1.2, fsai::acoustics::LipEnd::pressure_release);
+  REQUIRE(r.size() >= 4);
+  for (int n = 1; n <= 4; ++n)
+    CHECK(r[n - 1].f == Approx((2 * n - 1) * c0 / (4 * L)).epsilon(1e-4));
+}
+
+TEST_CASE("FE closed-open tube: f_n = (2n-1) c / 4L within 0.5%",
+          "[acoustics][mpi]")
+{
+  const std::string model = GENERATE(std::string("planar"),
+                                     std::string("axisym"));
+  CAPTURE(model);
+  const double L = 0.175, c0 = 343.0;
+  fsai::mesh::VocalTractGeometry g;
+  g.model = model;
+  g.h = 0.005;
+  auto f = pulse_formants(fsai::mesh::uniform_tube(L, 3e-4), g,
+                          "pressure-release", 4);
+  REQUIRE(f.size() == 4);
+  for (int n = 1; n <= 4; ++n)
+  {
+    const double ref = (2 * n - 1) * c0 / (4 * L);
+    fsai::log::info("Acoustics tube {} f{} = {:.2f} Hz (exact {:.2f}, {:+.3f}%)",
+                    model, n, f[n - 1], ref, 100 * (f[n - 1] - ref) / ref);
+    CHECK(f[n - 1] == Approx(ref).epsilon(0.005));
+  }
+}
+
+TEST_CASE("FE vowel [u] F1-F3 within 3% of the 1D model (p' = 0 at lips)",
+          "[acoustics][mpi]")
+{
+  namespace ac = fsai::acoustics;
+  const std::string model = GENERATE(std::string("planar"),
+                                     std::string("axisym"));
+  CAPTURE(model);
+  auto af = fsai::mesh::read_area_function(fsai::mesh::vowel_file("u"));
+  fsai::mesh::VocalTractGeometry g;
+  g.model = model;
+  g.h = 0.00686;
+  auto f = pulse_formants(af, g, "pressure-release", 3);
+  auto ref = ac::tube_resonances(fsai::mesh::resample(af, true, 5e-4), 5000,
+                                 343.0, 1.2, ac::LipEnd::pressure_release);
+  REQUIRE(f.size() == 3);
+  for (int n = 0; n < 3; ++n)
+  {
+    fsai::log::info("Acoustics [u] {} F{} = {:.1f} Hz, 1D {:.1f} Hz ({:+.2f}%)",
+                    model, n + 1, f[n], ref[n].f,
+                    100 * (f[n] - ref[n].f) / ref[n].f);
+    CHECK(f[n] == Approx(ref[n].f).epsilon(0.03));
+  }
+}
+
+TEST_CASE("Area-function files: clear errors for bad input", "[acoustics]")
+{
+  fsai::test::TempDir dir;
+  using fsai::InputError;
+  auto bad = [&](const std::string& text)
+  { return write_file(dir, "bad.csv", text); };
+  CHECK_THROWS_AS(fsai::mesh::read_area_function(dir / "none.csv"),
+                  InputError);
+  CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("x_cm,area_cm2\n1,abc\n")),
+                  InputError);
+  CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("x_cm,area_cm2\n1,-2\n")),
+                  InputError);
+  CHECK_THROWS_AS(
+      fsai::mesh::read_area_function(bad("x_cm,area_cm2\n1,2\n0.5,2\n")),
+      InputError);
+  CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("a,b\n1,2\n")), InputError);
+  CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("x_cm,area_cm2\n")),
+                  InputError);
+  CHECK_THROWS_AS(fsai::mesh::vowel_file("y"), InputError);
+  auto af = fsai::mesh::read_area_function(
+      bad("# comment\nx_cm,area_cm2\n1,2\n3,4.5\n"));
+  CHECK(af.size() == 2);
+  CHECK(af.length() == Approx(0.03));
+  CHECK(af.area[1] == Approx(4.5e-4));
+  CHECK(af.area_at(0.0125, true) == Approx(3.25e-4)); // centres 0.5, 2 cm
+}
+
+TEST_CASE("Unflanged tube radiating into free field: end correction 0.6133 a",
+          "[acoustics][mpi]")
+{
+  // Axisymmetric tube, thin wall (1 mm), radiation region of radius 8 cm
+  // closed by the Sommerfeld condition with its curvature term. The end
+  // correction follows from f1 = c / 4 (L + Δ); Levine & Schwinger (1948):
+  // Δ = 0.6133 a for an infinitely thin wall, ka → 0 (here ka = 0.09)
+  const double L = 0.175, A = 3e-4, c0 = 343.0, a = std::sqrt(A / M_PI);
+  fsai::mesh::VocalTractGeometry g;
+  g.model = "axisym";
+  g.h = 0.003;
+  g.wall = 0.001;
+  auto f = pulse_formants(fsai::mesh::uniform_tube(L, A), g, "sommerfeld", 1);
+  REQUIRE(f.size() == 1);
+  const double delta = c0 / (4 * f[0]) - L;
+  fsai::log::info("Acoustics end correction: f1 = {:.2f} Hz, delta/a = {:.4f} "
+                  "(Levine-Schwinger 0.6133, {:+.1f}%)",
+                  f[0], delta / a, 100 * (delta / a - 0.6133) / 0.6133);
+  CHECK(delta / a == Approx(0.6133).epsilon(0.15));
+}
