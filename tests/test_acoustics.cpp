@@ -13,8 +13,8 @@
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/generation.h>
-#include <fstream>
 #include <fsai_forms/acoustics.h>
+#include <fstream>
 #include <mesh/area_function.h>
 #include <mesh/vocal_tract.h>
 
@@ -83,8 +83,7 @@ std::vector<double> pulse_formants(const fsai::mesh::AreaFunction& af,
   bm.spherical = bm.axisymmetric;
   const double x_obs = ac::default_observation_point(
       af, g.open ? ac::LipEnd::unflanged : ac::LipEnd::pressure_release);
-  auto r = ac::pulse_response(m, wave, pulse, bm,
-                              {{0, 0, 0}, {x_obs, 0, 0}});
+  auto r = ac::pulse_response(m, wave, pulse, bm, {{0, 0, 0}, {x_obs, 0, 0}});
   auto H = ac::transfer_function(r.U, r.p[1], r.dt, pulse.decay());
   std::vector<double> mag, f;
   for (auto h : H.h)
@@ -154,15 +153,15 @@ TEST_CASE("Standing mode converges at second order in space and time",
   const double t1 = run(24, 2, 0.1), t2 = run(24, 2, 0.05),
                t3 = run(24, 2, 0.025);
   const double rt = std::log2(t2 / t3);
-  fsai::log::info("Acoustics MMS: space P1 e = {:.3e} {:.3e} {:.3e} rate {:.3f};"
-                  " time e = {:.3e} {:.3e} {:.3e} rate {:.3f}",
-                  e8, e16, e32, rs, t1, t2, t3, rt);
+  fsai::log::info(
+      "Acoustics MMS: space P1 e = {:.3e} {:.3e} {:.3e} rate {:.3f};"
+      " time e = {:.3e} {:.3e} {:.3e} rate {:.3f}",
+      e8, e16, e32, rs, t1, t2, t3, rt);
   CHECK(rs == Approx(2.0).margin(0.15));
   CHECK(rt == Approx(2.0).margin(0.15));
 }
 
-TEST_CASE("1D chain-matrix model: closed-open tube resonances",
-          "[acoustics]")
+TEST_CASE("1D chain-matrix model: closed-open tube resonances", "[acoustics]")
 {
   const double L = 0.175, c0 = 343.0;
   auto af = fsai::mesh::resample(fsai::mesh::uniform_tube(L, 3e-4), true, 1e-3);
@@ -176,8 +175,8 @@ TEST_CASE("1D chain-matrix model: closed-open tube resonances",
 TEST_CASE("FE closed-open tube: f_n = (2n-1) c / 4L within 0.5%",
           "[acoustics][mpi]")
 {
-  const std::string model = GENERATE(std::string("planar"),
-                                     std::string("axisym"));
+  const std::string model
+      = GENERATE(std::string("planar"), std::string("axisym"));
   CAPTURE(model);
   const double L = 0.175, c0 = 343.0;
   fsai::mesh::VocalTractGeometry g;
@@ -189,8 +188,9 @@ TEST_CASE("FE closed-open tube: f_n = (2n-1) c / 4L within 0.5%",
   for (int n = 1; n <= 4; ++n)
   {
     const double ref = (2 * n - 1) * c0 / (4 * L);
-    fsai::log::info("Acoustics tube {} f{} = {:.2f} Hz (exact {:.2f}, {:+.3f}%)",
-                    model, n, f[n - 1], ref, 100 * (f[n - 1] - ref) / ref);
+    fsai::log::info(
+        "Acoustics tube {} f{} = {:.2f} Hz (exact {:.2f}, {:+.3f}%)", model, n,
+        f[n - 1], ref, 100 * (f[n - 1] - ref) / ref);
     CHECK(f[n - 1] == Approx(ref).epsilon(0.005));
   }
 }
@@ -199,8 +199,8 @@ TEST_CASE("FE vowel [u] F1-F3 within 3% of the 1D model (p' = 0 at lips)",
           "[acoustics][mpi]")
 {
   namespace ac = fsai::acoustics;
-  const std::string model = GENERATE(std::string("planar"),
-                                     std::string("axisym"));
+  const std::string model
+      = GENERATE(std::string("planar"), std::string("axisym"));
   CAPTURE(model);
   auto af = fsai::mesh::read_area_function(fsai::mesh::vowel_file("u"));
   fsai::mesh::VocalTractGeometry g;
@@ -225,8 +225,7 @@ TEST_CASE("Area-function files: clear errors for bad input", "[acoustics]")
   using fsai::InputError;
   auto bad = [&](const std::string& text)
   { return write_file(dir, "bad.csv", text); };
-  CHECK_THROWS_AS(fsai::mesh::read_area_function(dir / "none.csv"),
-                  InputError);
+  CHECK_THROWS_AS(fsai::mesh::read_area_function(dir / "none.csv"), InputError);
   CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("x_cm,area_cm2\n1,abc\n")),
                   InputError);
   CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("x_cm,area_cm2\n1,-2\n")),
@@ -234,7 +233,8 @@ TEST_CASE("Area-function files: clear errors for bad input", "[acoustics]")
   CHECK_THROWS_AS(
       fsai::mesh::read_area_function(bad("x_cm,area_cm2\n1,2\n0.5,2\n")),
       InputError);
-  CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("a,b\n1,2\n")), InputError);
+  CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("a,b\n1,2\n")),
+                  InputError);
   CHECK_THROWS_AS(fsai::mesh::read_area_function(bad("x_cm,area_cm2\n")),
                   InputError);
   CHECK_THROWS_AS(fsai::mesh::vowel_file("y"), InputError);

@@ -49,13 +49,13 @@ struct FormantParameters
   std::string area_function; // overrides vowel
   std::string model = "planar";
   std::string radiation = "sommerfeld";
-  double h = 0.0;              // mesh size [m]; 0: from elements_per_wavelength
+  double h = 0.0; // mesh size [m]; 0: from elements_per_wavelength
   double elements_per_wavelength = 10.0;
-  double layer = 0.02;         // absorbing-layer thickness for pml [m]
-  bool curvature = true;       // Bayliss-Turkel curvature term in Sommerfeld
-  double mic_distance = 0.03;  // microphone on the axis, beyond the lips [m]
+  double layer = 0.02;        // absorbing-layer thickness for pml [m]
+  bool curvature = true;      // Bayliss-Turkel curvature term in Sommerfeld
+  double mic_distance = 0.03; // microphone on the axis, beyond the lips [m]
   int formants = 4;
-  int snapshots = 100;         // p' snapshots in pressure.xdmf (0: none)
+  int snapshots = 100; // p' snapshots in pressure.xdmf (0: none)
   bool check_result = false;
 
   void bind(fsai::common::Parameters& p)
@@ -88,7 +88,8 @@ struct FormantParameters
 
   void validate() const
   {
-    fsai::require_positive("--elements_per_wavelength", elements_per_wavelength);
+    fsai::require_positive("--elements_per_wavelength",
+                           elements_per_wavelength);
     fsai::require(h >= 0, "--h", ">= 0", h);
     fsai::require_positive("--mic_distance", mic_distance);
     fsai::require(formants >= 1 and formants <= 10, "--formants", "in [1, 10]",
@@ -140,12 +141,11 @@ int main(int argc, char* argv[])
         // The 1D model of the same wall (smooth or stepped) as the FE mesh
         const fsai::mesh::AreaFunction af1d
             = fsai::mesh::resample(af, geo.smooth, 5e-4);
-        const std::string label
-            = fp.area_function.empty() ? fp.vowel : af_path;
-        const ac::LipEnd lip
-            = fp.radiation == "pressure-release" ? ac::LipEnd::pressure_release
-              : geo.baffle                       ? ac::LipEnd::flanged
-                                                 : ac::LipEnd::unflanged;
+        const std::string label = fp.area_function.empty() ? fp.vowel : af_path;
+        const ac::LipEnd lip = fp.radiation == "pressure-release"
+                                   ? ac::LipEnd::pressure_release
+                               : geo.baffle ? ac::LipEnd::flanged
+                                            : ac::LipEnd::unflanged;
         // Observation point of H: the lips, or 5 mm inside them for p = 0
         const double x_obs = ac::default_observation_point(af, lip);
         std::vector<ac::Resonance> ref = ac::tube_resonances(
@@ -153,8 +153,8 @@ int main(int argc, char* argv[])
         std::vector<double> f1d, b1d;
         for (auto r : ref)
           f1d.push_back(r.f), b1d.push_back(r.bandwidth);
-        fsai::log::info("Area function {}: {} sections, L = {:.2f} cm",
-                        af_path, af.size(), 100 * af.length());
+        fsai::log::info("Area function {}: {} sections, L = {:.2f} cm", af_path,
+                        af.size(), 100 * af.length());
         fsai::log::info("1D model ({} lip end): F = {::.0f} Hz",
                         fp.radiation == "pressure-release" ? "p = 0"
                         : geo.baffle                       ? "flanged"
@@ -191,8 +191,9 @@ int main(int argc, char* argv[])
           geo.model = fp.model;
           geo.open = fp.radiation != "pressure-release";
           geo.layer = fp.radiation == "pml" ? fp.layer : 0.0;
-          geo.h = fp.h > 0 ? fp.h
-                           : wave.c0 / (pulse.f_max * fp.elements_per_wavelength);
+          geo.h = fp.h > 0
+                      ? fp.h
+                      : wave.c0 / (pulse.f_max * fp.elements_per_wavelength);
           fsai::mesh::MeshData m = [&]
           {
             fsai::common::ScopedTimer t("formants: mesh");
@@ -201,8 +202,8 @@ int main(int argc, char* argv[])
 
           ac::TractBoundaryModel bm;
           bm.axisymmetric = fp.model == "axisym";
-          bm.area_factor = bm.axisymmetric ? 2 * M_PI
-                                           : geo.depth * (geo.half ? 2.0 : 1.0);
+          bm.area_factor
+              = bm.axisymmetric ? 2 * M_PI : geo.depth * (geo.half ? 2.0 : 1.0);
           bm.radiation = fp.radiation;
           bm.radiation_radius = geo.radius;
           bm.centre = {af.length(), 0.0, 0.0};
@@ -223,8 +224,8 @@ int main(int argc, char* argv[])
 
           // 4. Pulse run with progress and p' snapshots
           const int steps = int(std::ceil(pulse.duration / pulse.dt()));
-          const int every = fp.snapshots > 0 ? std::max(1, steps / fp.snapshots)
-                                             : 0;
+          const int every
+              = fp.snapshots > 0 ? std::max(1, steps / fp.snapshots) : 0;
           std::unique_ptr<fsai::io::TimeSeriesWriter> xdmf;
           fsai::io::Progress progress("step", steps, 5.0);
           fsai::log::info("Pulse run: dt = {:.3e} s, {} steps, h = {:.2e} m",
@@ -280,8 +281,8 @@ int main(int argc, char* argv[])
             }
           }
           {
-            std::vector<std::string> cols = {"t_s", "U_m3s", "p_glottis_pa",
-                                             "p_obs_pa"};
+            std::vector<std::string> cols
+                = {"t_s", "U_m3s", "p_glottis_pa", "p_obs_pa"};
             if (geo.open)
               cols.push_back("p_mic_pa");
             cols.push_back("energy_j");
@@ -346,8 +347,8 @@ int main(int argc, char* argv[])
             if (k >= dev.size() or std::abs(dev[k]) > 3.0)
             {
               throw std::runtime_error(fmt::format(
-                  "check failed: F{} deviates from the 1D model by {} %",
-                  k + 1, k < dev.size() ? dev[k] : NAN));
+                  "check failed: F{} deviates from the 1D model by {} %", k + 1,
+                  k < dev.size() ? dev[k] : NAN));
             }
           }
         }

@@ -78,8 +78,10 @@ void fsai::acoustics::WaveParameters::bind(fsai::common::Parameters& p)
 {
   p.add("acoustics.c0", c0, "speed of sound [m/s]");
   p.add("acoustics.rho0", rho0, "air density [kg/m^3]");
-  p.add("acoustics.newmark_beta", newmark_beta, "Newmark beta (1/4: trapezoidal)");
-  p.add("acoustics.newmark_gamma", newmark_gamma, "Newmark gamma (1/2: no numerical damping)");
+  p.add("acoustics.newmark_beta", newmark_beta,
+        "Newmark beta (1/4: trapezoidal)");
+  p.add("acoustics.newmark_gamma", newmark_gamma,
+        "Newmark gamma (1/2: no numerical damping)");
 }
 //-----------------------------------------------------------------------------
 void fsai::acoustics::WaveParameters::validate() const
@@ -113,9 +115,9 @@ fsai::acoustics::WaveSolver::WaveSolver(
   fsai::require(degree == 1 or degree == 2, "acoustics: degree", "1 or 2",
                 degree);
 
-  _V = std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(acoustic_forms::functionspace_m(tdim, degree), "p",
-                                std::const_pointer_cast<mesh::Mesh>(mesh)));
+  _V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+      acoustic_forms::functionspace_m(tdim, degree), "p",
+      std::const_pointer_cast<mesh::Mesh>(mesh)));
   auto mesh_nc = std::const_pointer_cast<mesh::Mesh>(mesh);
   _Vv = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
       acoustic_forms::functionspace_L_source(tdim, degree), "v", mesh_nc));
@@ -167,23 +169,27 @@ fsai::acoustics::WaveSolver::WaveSolver(
         {IntegralType::exterior_facet, t.get()}};
   };
 
-  auto form = [&](ufcx_form& f, std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces,
+  auto form = [&](ufcx_form& f,
+                  std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces,
                   const Coefficients& coeffs,
                   const std::map<IntegralType, const mesh::MeshTags<int>*>& sd)
   {
-    return std::make_shared<fem::Form<double>>(fem::create_form<double>(
-        f, spaces, coeffs, constants, sd, mesh_nc));
+    return std::make_shared<fem::Form<double>>(
+        fem::create_form<double>(f, spaces, coeffs, constants, sd, mesh_nc));
   };
   auto m = form(acoustic_forms::m(tdim, degree), {_V, _V}, {}, {});
-  auto c = form(acoustic_forms::c(tdim, degree), {_V, _V}, {{"sigma", s}}, on(tags_rad));
-  auto k = form(acoustic_forms::k(tdim, degree), {_V, _V}, {{"sigma", s}}, on(tags_rad));
+  auto c = form(acoustic_forms::c(tdim, degree), {_V, _V}, {{"sigma", s}},
+                on(tags_rad));
+  auto k = form(acoustic_forms::k(tdim, degree), {_V, _V}, {{"sigma", s}},
+                on(tags_rad));
   _L_source = form(acoustic_forms::L_source(tdim, degree), {_V},
                    {{"v", _v_flow}, {"taper", _taper}}, {});
-  _L_wall = form(acoustic_forms::L_wall(tdim, degree), {_V}, {{"a_wall", _a_wall}},
-                 on(tags_wall));
-  auto b_in = form(acoustic_forms::b_inlet(tdim, degree), {_V}, {}, on(tags_in));
-  auto measure
-      = form(acoustic_forms::boundary_measure(tdim, degree), {}, {}, on(tags_in));
+  _L_wall = form(acoustic_forms::L_wall(tdim, degree), {_V},
+                 {{"a_wall", _a_wall}}, on(tags_wall));
+  auto b_in
+      = form(acoustic_forms::b_inlet(tdim, degree), {_V}, {}, on(tags_in));
+  auto measure = form(acoustic_forms::boundary_measure(tdim, degree), {}, {},
+                      on(tags_in));
 
   // E21 matrices, assembled once
   common::ScopedTimer t_assemble("acoustics: assemble matrices");
@@ -247,10 +253,11 @@ fsai::acoustics::WaveSolver::WaveSolver(
   MPI_Allreduce(&local, &_inlet_measure, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
   t_assemble.stop();
 
-  // Linear solver: the factorisation is computed at the first solve and while the operator does not change
-  // reused while the operator does not change. PETSc's own LU is ~8x
-  // faster per solve than MUMPS on one rank for these small 2D systems
-  // (measured: 0.13 ms vs 1.0 ms, 5.7k dofs); MUMPS in parallel.
+  // Linear solver: the factorisation is computed at the first solve and while
+  // the operator does not change reused while the operator does not change.
+  // PETSc's own LU is ~8x faster per solve than MUMPS on one rank for these
+  // small 2D systems (measured: 0.13 ms vs 1.0 ms, 5.7k dofs); MUMPS in
+  // parallel.
   common::set_option_default("acoustic_ksp_type", "preonly");
   common::set_option_default("acoustic_pc_type", "lu");
   common::set_option_default("acoustic_pc_factor_mat_solver_type",
@@ -386,9 +393,9 @@ void fsai::acoustics::WaveSolver::step()
     KSPGetConvergedReason(_solver.ksp(), &reason);
     if (reason < 0)
     {
-      throw std::runtime_error(
-          "acoustics: linear solve failed at t = " + std::to_string(_t)
-          + " s (KSPConvergedReason " + std::to_string(reason) + ")");
+      throw std::runtime_error("acoustics: linear solve failed at t = "
+                               + std::to_string(_t) + " s (KSPConvergedReason "
+                               + std::to_string(reason) + ")");
     }
   }
 

@@ -116,8 +116,7 @@ private:
   using Form = dolfinx::fem::Form<double>;
   void assemble_source(Vec b);
 
-  double _dt, _t = 0.0, _beta, _gamma, _inlet_dudt = 0.0,
-              _inlet_measure = 0.0;
+  double _dt, _t = 0.0, _beta, _gamma, _inlet_dudt = 0.0, _inlet_measure = 0.0;
   bool _lighthill, _vibrating = false;
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V, _Vv, _Vs;
   std::shared_ptr<dolfinx::fem::Function<double>> _p, _v_flow, _taper, _a_wall;
@@ -139,6 +138,7 @@ private:
 /// normally incident wave crossing the layer twice is reduced by R0.
 std::shared_ptr<dolfinx::fem::Function<double>>
 absorbing_layer(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
-                std::span<const std::int32_t> cells, std::array<double, 3> centre, double r0, double d, double c0,
+                std::span<const std::int32_t> cells,
+                std::array<double, 3> centre, double r0, double d, double c0,
                 double R0);
 } // namespace fsai::acoustics

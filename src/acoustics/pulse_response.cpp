@@ -57,21 +57,22 @@ fsai::acoustics::PulseResult fsai::acoustics::pulse_response(
   else if (bm.radiation == "sommerfeld" or bm.radiation == "pml")
   {
     b.radiation = facets(m, "radiation");
-    const double R = bm.radiation_radius + (bm.radiation == "pml" ? bm.layer : 0.0);
+    const double R
+        = bm.radiation_radius + (bm.radiation == "pml" ? bm.layer : 0.0);
     b.radiation_beta = bm.curvature ? (bm.spherical ? 1.0 : 0.5) / R : 0.0;
     if (bm.radiation == "pml")
     {
       fsai::require_positive("absorbing layer thickness", bm.layer);
-      std::vector<std::int32_t> cells
-          = m.cell_tags->find(m.cell_tag("layer"));
-      sigma = absorbing_layer(m.mesh, cells, bm.centre, bm.radiation_radius, bm.layer,
-                              wave.c0, 1e-3);
+      std::vector<std::int32_t> cells = m.cell_tags->find(m.cell_tag("layer"));
+      sigma = absorbing_layer(m.mesh, cells, bm.centre, bm.radiation_radius,
+                              bm.layer, wave.c0, 1e-3);
     }
   }
   else
   {
     throw fsai::InputError("radiation must be sommerfeld, pml or "
-                           "pressure-release (got '" + bm.radiation + "')");
+                           "pressure-release (got '"
+                           + bm.radiation + "')");
   }
 
   const double dt = pulse.dt();
@@ -81,7 +82,8 @@ fsai::acoustics::PulseResult fsai::acoustics::pulse_response(
   fsai::require_positive("inlet area", area);
 
   const double tau = 0.84 / pulse.f_max, t0 = 4.0 * tau, U0 = 1e-4;
-  auto U = [&](double t) { return U0 * std::exp(-std::pow((t - t0) / tau, 2)); };
+  auto U
+      = [&](double t) { return U0 * std::exp(-std::pow((t - t0) / tau, 2)); };
   auto dUdt = [&](double t) { return -2.0 * (t - t0) / (tau * tau) * U(t); };
 
   PulseResult r;

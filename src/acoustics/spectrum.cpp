@@ -35,16 +35,18 @@ double db(double m) { return 20.0 * std::log10(std::max(m, 1e-300)); }
 } // namespace
 
 //-----------------------------------------------------------------------------
-fsai::acoustics::TransferFunction fsai::acoustics::transfer_function(
-    const std::vector<double>& x, const std::vector<double>& y, double dt,
-    double decay, int pad)
+fsai::acoustics::TransferFunction
+fsai::acoustics::transfer_function(const std::vector<double>& x,
+                                   const std::vector<double>& y, double dt,
+                                   double decay, int pad)
 {
   fsai::require(x.size() == y.size() and x.size() >= 8, "transfer function",
                 "two signals of equal length >= 8", x.size());
   std::vector<double> xw(x), yw(y);
   for (std::size_t i = 0; i < x.size(); ++i)
   {
-    const double w = std::isfinite(decay) ? std::exp(-double(i) * dt / decay) : 1.0;
+    const double w
+        = std::isfinite(decay) ? std::exp(-double(i) * dt / decay) : 1.0;
     xw[i] *= w;
     yw[i] *= w;
   }
@@ -75,11 +77,9 @@ fsai::acoustics::amplitude_spectrum(const std::vector<double>& x, double dt,
   return {f, a};
 }
 //-----------------------------------------------------------------------------
-std::vector<fsai::acoustics::Peak>
-fsai::acoustics::find_peaks(const std::vector<double>& f,
-                            const std::vector<double>& magnitude, double f_min,
-                            double f_max, double min_separation,
-                            double min_prominence)
+std::vector<fsai::acoustics::Peak> fsai::acoustics::find_peaks(
+    const std::vector<double>& f, const std::vector<double>& magnitude,
+    double f_min, double f_max, double min_separation, double min_prominence)
 {
   const std::size_t n = f.size();
   std::vector<double> L(n);

@@ -28,13 +28,13 @@ fsai::acoustics::lip_end_from_string(const std::string& s)
   if (s == "flanged")
     return LipEnd::flanged;
   throw fsai::InputError("lip end must be pressure-release, unflanged or "
-                         "flanged (got '" + s + "')");
+                         "flanged (got '"
+                         + s + "')");
 }
 //-----------------------------------------------------------------------------
 fsai::acoustics::TubeResponse
 fsai::acoustics::tube_response(const fsai::mesh::AreaFunction& af, double f,
-                               double c0, double rho0, LipEnd end,
-                               double x_obs)
+                               double c0, double rho0, LipEnd end, double x_obs)
 {
   const cplx j(0.0, 1.0);
   const double k = 2.0 * M_PI * f / c0;
@@ -69,16 +69,18 @@ fsai::acoustics::tube_response(const fsai::mesh::AreaFunction& af, double f,
   return {(K[0] * ZL + K[1]) / Ug, ZL / Ug, (Kb[0] * ZL + Kb[1]) / Ug};
 }
 //-----------------------------------------------------------------------------
-double fsai::acoustics::default_observation_point(
-    const fsai::mesh::AreaFunction& af, LipEnd end)
+double
+fsai::acoustics::default_observation_point(const fsai::mesh::AreaFunction& af,
+                                           LipEnd end)
 {
   const double L = af.length();
   return end == LipEnd::pressure_release ? L - std::min(0.005, 0.25 * L) : L;
 }
 //-----------------------------------------------------------------------------
-std::vector<fsai::acoustics::Resonance> fsai::acoustics::tube_resonances(
-    const fsai::mesh::AreaFunction& af, double f_max, double c0, double rho0,
-    LipEnd end, double x_obs)
+std::vector<fsai::acoustics::Resonance>
+fsai::acoustics::tube_resonances(const fsai::mesh::AreaFunction& af,
+                                 double f_max, double c0, double rho0,
+                                 LipEnd end, double x_obs)
 {
   if (x_obs < 0.0)
     x_obs = default_observation_point(af, end);

@@ -2,7 +2,8 @@
 //
 // 1D reference: lossless plane-wave (Webster) model of a stepped tube by
 // chain (transmission-line) matrices. Section k of length l and area A:
-//   [p_in; U_in] = [[cos kl, j Z sin kl], [j sin kl / Z, cos kl]] [p_out; U_out]
+//   [p_in; U_in] = [[cos kl, j Z sin kl], [j sin kl / Z, cos kl]] [p_out;
+//   U_out]
 // with k = ω/c0, Z = ρ0 c0 / A. The lip end sees p = Z_L U with
 //   Z_L = 0 (pressure release), or the low-ka piston impedances
 //   Z_L = (ρ0 c0 / A_L)((ka)²/4 + j 0.6133 ka)  (unflanged, Levine–Schwinger)

@@ -47,15 +47,15 @@ fsai::io::PointProbes::PointProbes(
       }
     }
   }
-  MPI_Allreduce(claim.data(), owner.data(), int(claim.size()), MPI_INT,
-                MPI_MIN, mesh->comm());
+  MPI_Allreduce(claim.data(), owner.data(), int(claim.size()), MPI_INT, MPI_MIN,
+                mesh->comm());
   for (std::size_t i = 0; i < _points.size(); ++i)
   {
     if (owner[i] == none)
     {
-      throw fsai::InputError(fmt::format(
-          "probe point ({}, {}, {}) lies outside the mesh", _points[i][0],
-          _points[i][1], _points[i][2]));
+      throw fsai::InputError(
+          fmt::format("probe point ({}, {}, {}) lies outside the mesh",
+                      _points[i][0], _points[i][1], _points[i][2]));
     }
     if (owner[i] == rank)
     {

@@ -35,8 +35,7 @@ bool to_number(const std::string& field, double& value)
 } // namespace
 
 //-----------------------------------------------------------------------------
-fsai::mesh::AreaFunction
-fsai::mesh::read_area_function(const std::string& path)
+fsai::mesh::AreaFunction fsai::mesh::read_area_function(const std::string& path)
 {
   std::ifstream in(path);
   if (!in)
@@ -86,7 +85,8 @@ fsai::mesh::read_area_function(const std::string& path)
     af.area.push_back(a * 1e-4);
   }
   if (!header)
-    throw fsai::InputError("area function " + path + ": no header 'x_cm,area_cm2'");
+    throw fsai::InputError("area function " + path
+                           + ": no header 'x_cm,area_cm2'");
   if (af.area.empty())
     throw fsai::InputError("area function " + path + ": no sections");
   return af;
@@ -96,15 +96,17 @@ fsai::mesh::AreaFunction fsai::mesh::uniform_tube(double L, double A)
 {
   fsai::require_positive("tube length", L);
   fsai::require_positive("tube area", A);
-  return AreaFunction{{L}, {A}, fmt::format("uniform tube L = {} m, A = {} m^2", L, A)};
+  return AreaFunction{
+      {L}, {A}, fmt::format("uniform tube L = {} m, A = {} m^2", L, A)};
 }
 //-----------------------------------------------------------------------------
 std::string fsai::mesh::vowel_file(const std::string& vowel)
 {
   if (vowel != "u" and vowel != "a" and vowel != "i")
   {
-    throw fsai::InputError("unknown vowel '" + vowel
-                           + "' (shipped: u, a, i; or give --area-function FILE.csv)");
+    throw fsai::InputError(
+        "unknown vowel '" + vowel
+        + "' (shipped: u, a, i; or give --area-function FILE.csv)");
   }
   return std::string(FSAI_DATA_DIR) + "/vowel_" + vowel + ".csv";
 }

@@ -13,17 +13,23 @@ namespace
 /// half-width of the area function: steps at the section ends (stepped) or
 /// straight lines between points at the section centres, 4 per interval
 /// so the axisymmetric radius sqrt(A/π) of a linear A is followed (smooth)
+/// The polygon starts at x_back <= 0 (the head's body behind the glottis,
+/// so a radiation region larger than the tract cannot reach the glottis).
 int tract_surface(const fsai::mesh::AreaFunction& af,
-                  const fsai::mesh::VocalTractGeometry& g, double offset)
+                  const fsai::mesh::VocalTractGeometry& g, double offset,
+                  double x_back = 0.0)
 {
   namespace occ = gmsh::model::occ;
   auto r = [&](double x)
   { return fsai::mesh::tract_half_width(g, af.area_at(x, g.smooth)) + offset; };
-  std::vector<std::array<double, 2>> pts{{0.0, 0.0}};
+  std::vector<std::array<double, 2>> pts{{x_back, 0.0}};
+  if (x_back < 0.0)
+    pts.push_back({x_back, r(0.0)});
   if (g.smooth)
   {
     const int sub = g.model == "axisym" ? 4 : 1;
-    pts.push_back({0.0, r(0.0)});
+    if (x_back == 0.0)
+      pts.push_back({0.0, r(0.0)});
     for (std::size_t k = 0; k < af.size(); ++k)
     {
       const double xc = af.x_centre(k);
@@ -45,7 +51,8 @@ int tract_surface(const fsai::mesh::AreaFunction& af,
     for (std::size_t k = 0; k < af.size(); ++k)
     {
       const double rk = fsai::mesh::tract_half_width(g, af.area[k]) + offset;
-      if (k == 0 or af.area[k] != af.area[k - 1])
+      if ((k == 0 and x_back == 0.0)
+          or (k > 0 and af.area[k] != af.area[k - 1]))
         pts.push_back({af.x_start(k), rk});
       pts.push_back({af.x_end[k], rk});
       // Merge with the next section if it has the same area
@@ -73,7 +80,8 @@ int half_disk(double L, double R, bool baffle)
   std::vector<gmsh::vectorpair> map;
   occ::intersect({{2, disk}}, {{2, box}}, out, map);
   if (out.size() != 1)
-    throw std::runtime_error("vocal tract: radiation half-disk is not one surface");
+    throw std::runtime_error(
+        "vocal tract: radiation half-disk is not one surface");
   return out[0].second;
 }
 
@@ -119,8 +127,8 @@ double fsai::mesh::tract_half_width(const VocalTractGeometry& g, double A)
 }
 //-----------------------------------------------------------------------------
 fsai::mesh::MeshData fsai::mesh::vocal_tract(MPI_Comm comm,
-                                              const AreaFunction& af,
-                                              const VocalTractGeometry& g)
+                                             const AreaFunction& af,
+                                             const VocalTractGeometry& g)
 {
   g.validate();
   fsai::require(af.size() >= 1, "area function", "at least one section",
@@ -158,8 +166,10 @@ fsai::mesh::MeshData fsai::mesh::vocal_tract(MPI_Comm comm,
           std::vector<gmsh::vectorpair> map;
           if (!g.baffle)
           {
-            const int head = tract_surface(af, g, g.wall);
-            occ::cut({{2, sector}}, {{2, head}}, out, map, -1, true, g.layer <= 0.0);
+            const int head
+                = tract_surface(af, g, g.wall, -1.2 * (g.radius + g.layer));
+            occ::cut({{2, sector}}, {{2, head}}, out, map, -1, true,
+                     g.layer <= 0.0);
             if (g.layer > 0.0)
             {
               const int big = half_disk(L, g.radius + g.layer, false);
@@ -221,13 +231,13 @@ fsai::mesh::MeshData fsai::mesh::vocal_tract(MPI_Comm comm,
           for (std::size_t i = 0; i < map2.size(); ++i)
           {
             const int orig = all[i % all.size()].second;
-            auto& dst = std::find(tract_s.begin(), tract_s.end(), orig)
-                                != tract_s.end()
-                            ? t2
-                        : std::find(air_s.begin(), air_s.end(), orig)
-                                != air_s.end()
-                            ? a2
-                            : l2;
+            auto& dst
+                = std::find(tract_s.begin(), tract_s.end(), orig)
+                          != tract_s.end()
+                      ? t2
+                  : std::find(air_s.begin(), air_s.end(), orig) != air_s.end()
+                      ? a2
+                      : l2;
             for (int s : tags_of(map2[i]))
               dst.push_back(s);
           }
@@ -235,8 +245,8 @@ fsai::mesh::MeshData fsai::mesh::vocal_tract(MPI_Comm comm,
         }
 
         // Cell groups
-        auto group = [](int dim, std::vector<int> tags, int id,
-                        const std::string& name)
+        auto group =
+            [](int dim, std::vector<int> tags, int id, const std::string& name)
         {
           std::sort(tags.begin(), tags.end());
           tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
@@ -255,7 +265,8 @@ fsai::mesh::MeshData fsai::mesh::vocal_tract(MPI_Comm comm,
           for (int s : *v)
             surfaces.push_back({2, s});
         gmsh::model::getBoundary(surfaces, boundary, true, false, false);
-        // OCC bounding boxes are padded by its tolerance (~1e-7): compare loosely
+        // OCC bounding boxes are padded by its tolerance (~1e-7): compare
+        // loosely
         const double tol = 1e-5 * extent;
         const double r_out = g.radius + g.layer;
         std::vector<int> glottis, wall, axis, lips, radiation;
@@ -271,10 +282,12 @@ fsai::mesh::MeshData fsai::mesh::vocal_tract(MPI_Comm comm,
             glottis.push_back(c);
           else if (!mirrored and std::abs(y0) < tol and std::abs(y1) < tol)
             axis.push_back(c);
-          else if (!g.open and std::abs(x0 - L) < tol and std::abs(x1 - L) < tol)
+          else if (!g.open and std::abs(x0 - L) < tol
+                   and std::abs(x1 - L) < tol)
             lips.push_back(c);
           else if (g.open
-                   and std::abs(std::hypot(mid[0] - L, mid[1]) - r_out) < 1e-6 * r_out)
+                   and std::abs(std::hypot(mid[0] - L, mid[1]) - r_out)
+                           < 1e-6 * r_out)
             radiation.push_back(c);
           else
             wall.push_back(c);

@@ -20,16 +20,17 @@ struct VocalTractGeometry
   /// resonances of the tract); "axisym": tube of radius sqrt(A/π) in the
   /// (x, r) half-plane
   std::string model = "planar";
-  bool half = false;     ///< planar: symmetric half y >= 0 only
-  bool smooth = true;    ///< wall through the section centres (AreaFunction::area_at)
-  double depth = 0.018;  ///< L_g, depth of the planar model [m]
-  bool open = true;      ///< radiation region beyond the lips (else the lips
-                         ///< are a boundary "lips")
-  double radius = 0.08;  ///< radius of the radiation region around the lips [m]
-  bool baffle = false;   ///< wall x = L around the mouth (flanged end)
-  double wall = 0.005;   ///< wall thickness of the tract outside (unflanged) [m]
-  double layer = 0.0;    ///< absorbing-layer thickness beyond `radius` [m]
-  double h = 0.005;      ///< mesh size [m]
+  bool half = false; ///< planar: symmetric half y >= 0 only
+  bool smooth
+      = true; ///< wall through the section centres (AreaFunction::area_at)
+  double depth = 0.018; ///< L_g, depth of the planar model [m]
+  bool open = true;     ///< radiation region beyond the lips (else the lips
+                        ///< are a boundary "lips")
+  double radius = 0.08; ///< radius of the radiation region around the lips [m]
+  bool baffle = false;  ///< wall x = L around the mouth (flanged end)
+  double wall = 0.005;  ///< wall thickness of the tract outside (unflanged) [m]
+  double layer = 0.0;   ///< absorbing-layer thickness beyond `radius` [m]
+  double h = 0.005;     ///< mesh size [m]
   double cells_across = 2.0; ///< minimum cells across a section's half-width
 
   void bind(fsai::common::Parameters& p);
