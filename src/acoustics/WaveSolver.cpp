@@ -288,6 +288,18 @@ std::int64_t fsai::acoustics::WaveSolver::dofs() const
   return _V->dofmap()->index_map->size_global();
 }
 //-----------------------------------------------------------------------------
+std::vector<double> fsai::acoustics::WaveSolver::source_vector()
+{
+  assemble_source(_rhs.vec());
+  const PetscScalar* r;
+  PetscInt n;
+  VecGetLocalSize(_rhs.vec(), &n);
+  VecGetArrayRead(_rhs.vec(), &r);
+  std::vector<double> out(r, r + n);
+  VecRestoreArrayRead(_rhs.vec(), &r);
+  return out;
+}
+//-----------------------------------------------------------------------------
 void fsai::acoustics::WaveSolver::assemble_source(Vec b)
 {
   // b = du/dt b_inlet + b_Lighthill + b_wall

@@ -111,6 +111,9 @@ public:
   double inlet_measure() const { return _inlet_measure; }
   /// Global number of unknowns
   std::int64_t dofs() const;
+  /// The load vector b of E21 for the current source data (inlet,
+  /// Lighthill, vibrating wall): owned entries, for tests and diagnostics
+  std::vector<double> source_vector();
 
 private:
   using Form = dolfinx::fem::Form<double>;
