@@ -1,0 +1,85 @@
+# Elastodynamics of the vocal fold and the benchmark solids (shared/DESIGN.md
+# E1, E4, E6, E7, E16–E18), compiled for triangles (plane strain) and
+# tetrahedra, P1 and P2.
+#
+# Strong form (reference configuration Ω^s):
+#   ρ ü + D u̇ − ∇·(F S) = ρ g  in Ω^s,   u = 0 on Γ_D,   (F S)·N = T on Γ_T
+# with F = I + ∇u, E = ½(FᵀF − I), S = λ tr(E) I + 2μ E (St.Venant–Kirchhoff,
+# E6). `nonlinear` = 0 gives linear elasticity (E = sym ∇u, F S → σ, E16).
+# Rayleigh damping D = ε1 M + ε2 K with K the stiffness at the reference
+# state (E17).
+#
+# Newmark (E18): with ũ = u_n + Δt v_n + (½ − β)Δt² a_n and
+#   a = (u − ũ)/(βΔt²),  v = v_n + Δt((1 − γ) a_n + γ a),
+# the residual for the new displacement u is
+#   R(u; w) = d [ (ρ a, w) + ε1 (ρ v, w) + ε2 (σ_lin(v), ∇w) ]
+#             + (F S, ∇w) − (ρ g, w) − s (T, w)_Γ_T
+# with d = 1 (dynamic) or 0 (static; load factor s scales g and T for load
+# stepping). J = ∂R/∂u by UFL differentiation. Materials are cell-wise (DG0
+# λ, μ, ρ), so layered folds (body/cover) need no extra forms.
+#
+# Modal analysis: K (linear stiffness) and M (mass) as bilinear forms.
+import ufl
+from ufl import (Identity, derivative, ds, dx, grad, inner, sym, tr)
+
+from fsai_ufl import degree, dim, domain
+
+mesh = domain()
+element = ufl.VectorElement("Lagrange", mesh.ufl_cell(), degree())
+DG0 = ufl.FiniteElement("DG", mesh.ufl_cell(), 0)
+V = ufl.FunctionSpace(mesh, element)
+Q = ufl.FunctionSpace(mesh, DG0)
+
+du = ufl.TrialFunction(V)
+w = ufl.TestFunction(V)
+u = ufl.Coefficient(V)       # unknown displacement at t_{n+1}
+u_n = ufl.Coefficient(V)
+v_n = ufl.Coefficient(V)
+a_n = ufl.Coefficient(V)
+traction = ufl.Coefficient(V)  # T on Γ_T (ds(1)) [Pa]
+
+lmbda = ufl.Coefficient(Q)   # Lamé λ [Pa]
+mu = ufl.Coefficient(Q)      # Lamé μ [Pa]
+rho = ufl.Coefficient(Q)     # density [kg/m³]
+
+dt = ufl.Constant(mesh)
+beta = ufl.Constant(mesh)
+gamma = ufl.Constant(mesh)
+eps1 = ufl.Constant(mesh)    # Rayleigh mass coefficient [1/s]
+eps2 = ufl.Constant(mesh)    # Rayleigh stiffness coefficient [s]
+dynamic = ufl.Constant(mesh)     # 1: Newmark, 0: static
+nonlinear = ufl.Constant(mesh)   # 1: St.Venant–Kirchhoff, 0: linear
+load = ufl.Constant(mesh)        # load factor s
+g = ufl.Constant(mesh, shape=(dim(),))  # body acceleration [m/s²]
+
+I = Identity(dim())
+
+
+def sigma_lin(x):
+    eps = sym(grad(x))
+    return lmbda * tr(eps) * I + 2 * mu * eps
+
+
+# Newmark kinematics
+u_tilde = u_n + dt * v_n + (0.5 - beta) * dt**2 * a_n
+a = (u - u_tilde) / (beta * dt**2)
+v = v_n + dt * ((1 - gamma) * a_n + gamma * a)
+
+# St.Venant–Kirchhoff first Piola–Kirchhoff stress (linear when nonlinear=0)
+H = grad(u)
+E = sym(H) + nonlinear * 0.5 * H.T * H
+S = lmbda * tr(E) * I + 2 * mu * E
+P = (I + nonlinear * H) * S
+
+R = (dynamic * (rho * inner(a, w) + eps1 * rho * inner(v, w)
+                + eps2 * inner(sigma_lin(v), grad(w))) * dx
+     + inner(P, grad(w)) * dx
+     - load * rho * inner(g, w) * dx
+     - load * inner(traction, w) * ds(1))
+J = derivative(R, u, du)
+
+# Modal analysis and diagnostics
+k = inner(sigma_lin(du), grad(w)) * dx
+m = rho * inner(du, w) * dx
+
+forms = [R, J, k, m]

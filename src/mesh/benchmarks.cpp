@@ -1,0 +1,58 @@
+// Copyright (C) 2026 fsai developers
+#include "benchmarks.h"
+#include "../common/errors.h"
+#include "gmsh_model.h"
+#include <cmath>
+#include <gmsh.h>
+
+fsai::mesh::MeshData fsai::mesh::turek_hron_beam(MPI_Comm comm, double h)
+{
+  fsai::require(h > 1e-4 and h <= 0.02, "Turek-Hron beam: mesh size h",
+                "in (1e-4, 0.02] m", h);
+  return build_with_gmsh(
+      comm, 2,
+      [&]()
+      {
+        namespace occ = gmsh::model::occ;
+        gmsh::model::add("turek_hron_beam");
+        const int rect = occ::addRectangle(0.2, 0.19, 0.0, 0.4, 0.02);
+        const int disk = occ::addDisk(0.2, 0.2, 0.0, 0.05, 0.05);
+        gmsh::vectorpair out;
+        std::vector<gmsh::vectorpair> map;
+        occ::cut({{2, rect}}, {{2, disk}}, out, map);
+        // Point A on the free end as a vertex: split the end edge
+        const int pA = occ::addPoint(0.6, 0.2, 0.0);
+        gmsh::vectorpair out2;
+        occ::fragment(out, {{0, pA}}, out2, map);
+        occ::synchronize();
+        out.clear();
+        for (auto [d, t] : out2)
+          if (d == 2)
+            out.push_back({d, t});
+
+        gmsh::vectorpair boundary;
+        gmsh::model::getBoundary(out, boundary, true, false, false);
+        std::vector<int> clamped, free;
+        for (auto [d, c] : boundary)
+        {
+          c = std::abs(c);
+          std::vector<double> lo, hi, mid;
+          gmsh::model::getParametrizationBounds(1, c, lo, hi);
+          gmsh::model::getValue(1, c, {0.5 * (lo[0] + hi[0])}, mid);
+          const double r = std::hypot(mid[0] - 0.2, mid[1] - 0.2);
+          (std::abs(r - 0.05) < 1e-6 ? clamped : free).push_back(c);
+        }
+        gmsh::model::addPhysicalGroup(1, clamped, 1);
+        gmsh::model::setPhysicalName(1, 1, "clamped");
+        gmsh::model::addPhysicalGroup(1, free, 2);
+        gmsh::model::setPhysicalName(1, 2, "free");
+        std::vector<int> s;
+        for (auto [d, t] : out)
+          s.push_back(t);
+        gmsh::model::addPhysicalGroup(2, s, 1);
+        gmsh::model::setPhysicalName(2, 1, "beam");
+        gmsh::option::setNumber("Mesh.MeshSizeMax", h);
+        gmsh::option::setNumber("Mesh.MeshSizeMin", h);
+        gmsh::model::mesh::generate(2);
+      });
+}

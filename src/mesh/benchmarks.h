@@ -1,0 +1,16 @@
+// Copyright (C) 2026 fsai developers
+// Geometries of the published benchmarks (shared/references/).
+#pragma once
+
+#include "MeshData.h"
+#include <mpi.h>
+
+namespace fsai::mesh
+{
+/// The elastic beam of Turek & Hron (2006) (turek_hron_setup.csv): the
+/// rectangle [0.2, 0.6] x [0.19, 0.21] m outside the cylinder of radius
+/// 0.05 m centred at (0.2, 0.2), which clamps it. Triangles of size h.
+/// Facet groups "clamped" (on the cylinder, 1) and "free" (2); cell group
+/// "beam" (1). Point A = (0.6, 0.2) is a mesh vertex.
+MeshData turek_hron_beam(MPI_Comm comm, double h);
+} // namespace fsai::mesh

@@ -1,0 +1,405 @@
+// Copyright (C) 2026 fsai developers
+#include "ElasticSolver.h"
+#include "../common/Parameters.h"
+#include "../common/Runtime.h"
+#include "../common/errors.h"
+#include "../common/timer.h"
+#include <cmath>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <fmt/format.h>
+#include <fsai_forms/structure.h>
+
+using namespace dolfinx;
+namespace structure_forms = fsai::forms::structure;
+
+namespace
+{
+std::string lu_package(MPI_Comm comm)
+{
+  int size;
+  MPI_Comm_size(comm, &size);
+  return size == 1 ? "petsc" : "mumps";
+}
+
+double global_norm(const la::Vector<double>& x)
+{
+  return la::norm(x, la::Norm::l2);
+}
+} // namespace
+
+//-----------------------------------------------------------------------------
+void fsai::structure::Material::validate(const std::string& what) const
+{
+  fsai::require_positive(what + ": E", E);
+  fsai::require(nu > -1.0 and nu < 0.5, what + ": nu", "in (-1, 0.5)", nu);
+  fsai::require_positive(what + ": rho", rho);
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
+{
+  p.add_choice("solid.model", model, {"linear", "svk"},
+               "linear elasticity or St.Venant-Kirchhoff");
+  p.add("solid.degree", degree, "Lagrange degree of the displacement (1, 2)");
+  p.add("solid.E", material.E, "Young's modulus [Pa]");
+  p.add("solid.nu", material.nu, "Poisson's ratio");
+  p.add("solid.rho", material.rho, "density [kg/m^3]");
+  p.add("solid.newmark_beta", newmark_beta, "Newmark beta");
+  p.add("solid.newmark_gamma", newmark_gamma, "Newmark gamma");
+  p.add("solid.rayleigh_mass", rayleigh_mass, "Rayleigh eps1 (D = eps1 M + eps2 K) [1/s]");
+  p.add("solid.rayleigh_stiffness", rayleigh_stiffness, "Rayleigh eps2 [s]");
+  p.add("solid.newton_rtol", newton_rtol, "Newton tolerance on |du|/|u|");
+  p.add("solid.newton_max_it", newton_max_it, "Newton iteration limit");
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::SolidParameters::validate() const
+{
+  fsai::require(model == "linear" or model == "svk", "--solid.model",
+                "linear or svk", model);
+  fsai::require(degree == 1 or degree == 2, "--solid.degree", "1 or 2", degree);
+  material.validate("--solid");
+  fsai::require_range("--solid.newmark_gamma", newmark_gamma, 0.5, 1.0);
+  fsai::require(2 * newmark_beta >= newmark_gamma and newmark_beta <= 0.5,
+                "--solid.newmark_beta",
+                "in [gamma/2, 1/2] (unconditionally stable)", newmark_beta);
+  fsai::require(rayleigh_mass >= 0, "--solid.rayleigh_mass", ">= 0",
+                rayleigh_mass);
+  fsai::require(rayleigh_stiffness >= 0, "--solid.rayleigh_stiffness", ">= 0",
+                rayleigh_stiffness);
+  fsai::require_positive("--solid.newton_rtol", newton_rtol);
+  fsai::require(newton_max_it >= 1, "--solid.newton_max_it", ">= 1",
+                newton_max_it);
+}
+//-----------------------------------------------------------------------------
+fsai::structure::ElasticSolver::ElasticSolver(
+    std::shared_ptr<const mesh::Mesh> mesh, std::span<const std::int32_t> fixed,
+    std::span<const std::int32_t> loaded, const SolidParameters& params,
+    double dt)
+    : _p(params), _dt(dt), _Jmat(nullptr, false), _solver(mesh->comm())
+{
+  common::ScopedTimer timer("solid: setup");
+  params.validate();
+  fsai::require_positive("solid: time step", dt);
+  const int tdim = mesh->topology().dim();
+  const int deg = params.degree;
+  auto mesh_nc = std::const_pointer_cast<mesh::Mesh>(mesh);
+  _V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+      structure_forms::functionspace_R(tdim, deg), "u", mesh_nc));
+  auto Q = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+      structure_forms::functionspace_R(tdim, deg), "mu", mesh_nc));
+  auto vec = [&](const std::string& name)
+  {
+    auto f = std::make_shared<fem::Function<double>>(_V);
+    f->name = name;
+    f->x()->set(0.0);
+    return f;
+  };
+  _u = vec("displacement");
+  _u_n = vec("u_n");
+  _v_n = vec("v_n");
+  _a_n = vec("a_n");
+  _v = vec("velocity");
+  _a = vec("acceleration");
+  _traction = vec("traction");
+  auto scalar = [&](const std::string& name, double value)
+  {
+    auto f = std::make_shared<fem::Function<double>>(Q);
+    f->name = name;
+    f->x()->set(value);
+    return f;
+  };
+  _lambda = scalar("lambda", params.material.lambda());
+  _mu = scalar("mu", params.material.mu());
+  _rho = scalar("density", params.material.rho);
+
+  auto constant = [&](double value)
+  {
+    _constants.push_back(std::make_shared<fem::Constant<double>>(value));
+    return _constants.back();
+  };
+  _dynamic = constant(1.0);
+  _load = constant(1.0);
+  std::vector<double> g0(tdim, 0.0);
+  _g = std::make_shared<fem::Constant<double>>(std::span<const double>(g0));
+  std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
+      = {{"dt", constant(dt)},
+         {"beta", constant(params.newmark_beta)},
+         {"gamma", constant(params.newmark_gamma)},
+         {"eps1", constant(params.rayleigh_mass)},
+         {"eps2", constant(params.rayleigh_stiffness)},
+         {"dynamic", _dynamic},
+         {"nonlinear", constant(params.model == "svk" ? 1.0 : 0.0)},
+         {"load", _load},
+         {"g", _g}};
+  std::map<std::string, std::shared_ptr<const fem::Function<double>>> coeffs
+      = {{"u", _u},         {"u_n", _u_n}, {"v_n", _v_n},
+         {"a_n", _a_n},     {"traction", _traction},
+         {"lmbda", _lambda}, {"mu", _mu},   {"rho", _rho}};
+
+  // Dirichlet u = 0 and the loaded boundary (ds(1))
+  const int fdim = tdim - 1;
+  mesh_nc->topology_mutable().create_connectivity(fdim, tdim);
+  std::vector<std::int32_t> dofs
+      = fem::locate_dofs_topological(*_V, fdim, fixed);
+  auto zero = vec("zero");
+  _bcs = {std::make_shared<const fem::DirichletBC<double>>(zero, dofs)};
+  std::vector<std::int32_t> lf(loaded.begin(), loaded.end());
+  std::sort(lf.begin(), lf.end());
+  lf.erase(std::unique(lf.begin(), lf.end()), lf.end());
+  std::vector<std::int32_t> ones(lf.size(), 1);
+  _loaded_tags = std::make_shared<mesh::MeshTags<std::int32_t>>(
+      mesh, fdim, std::move(lf), std::move(ones));
+  std::map<fem::IntegralType, const mesh::MeshTags<int>*> sd
+      = {{fem::IntegralType::exterior_facet, _loaded_tags.get()}};
+
+  _R = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      structure_forms::R(tdim, deg), {_V}, coeffs, c, sd));
+  _J = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      structure_forms::J(tdim, deg), {_V, _V}, coeffs, c, sd));
+  _K = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      structure_forms::k(tdim, deg), {_V, _V}, coeffs, c, {}));
+  _M = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      structure_forms::m(tdim, deg), {_V, _V}, coeffs, c, {}));
+  _Jmat = la::petsc::Matrix(fem::petsc::create_matrix(*_J), false);
+
+  common::set_option_default("solid_ksp_type", "preonly");
+  common::set_option_default("solid_pc_type", "lu");
+  common::set_option_default("solid_pc_factor_mat_solver_type",
+                             lu_package(mesh->comm()));
+  // Absolute zero-pivot test of PETSc vs soft tissue (E ~ kPa, small cells)
+  common::set_option_default("solid_pc_factor_zeropivot", "0");
+  _solver.set_options_prefix("solid_");
+  _solver.set_from_options();
+  _solver.set_operator(_Jmat.mat());
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::set_material(
+    std::span<const std::int32_t> cells, const Material& m)
+{
+  m.validate("material");
+  auto dofmap = _mu->function_space()->dofmap();
+  auto set = [&](fem::Function<double>& f, double value)
+  {
+    auto x = f.x()->mutable_array();
+    for (std::int32_t c : cells)
+      x[dofmap->cell_dofs(c)[0]] = value; // DG0: one dof per cell
+    f.x()->scatter_fwd();
+  };
+  set(*_lambda, m.lambda());
+  set(*_mu, m.mu());
+  set(*_rho, m.rho);
+  _J_current = false;
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::set_body_acceleration(
+    std::array<double, 3> g)
+{
+  for (std::size_t i = 0; i < _g->value.size(); ++i)
+    _g->value[i] = g[i];
+}
+//-----------------------------------------------------------------------------
+int fsai::structure::ElasticSolver::newton(const std::string& what)
+{
+  la::Vector<double> b(_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
+  la::Vector<double> du(_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
+  la::petsc::Vector _b(la::petsc::create_vector_wrap(b), false);
+  la::petsc::Vector _du(la::petsc::create_vector_wrap(du), false);
+  const bool linear = _p.model == "linear";
+  double r0 = -1.0;
+  for (int it = 1; it <= _p.newton_max_it; ++it)
+  {
+    // Residual, zero on the Dirichlet rows (u stays 0 there)
+    {
+      common::ScopedTimer t("solid: assemble residual");
+      b.set(0.0);
+      fem::assemble_vector(b.mutable_array(), *_R);
+      b.scatter_rev(std::plus<double>());
+      fem::set_bc<double>(b.mutable_array(), _bcs);
+    }
+    const double rnorm = global_norm(b);
+    if (!std::isfinite(rnorm))
+    {
+      throw std::runtime_error(fmt::format(
+          "solid: residual is not finite at t = {:.6g} s ({})", _t, what));
+    }
+    if (r0 < 0.0)
+      r0 = rnorm;
+    if (rnorm <= _p.newton_atol)
+      return it - 1;
+
+    // Jacobian: constant for the linear model while Δt is fixed
+    if (!linear or !_J_current)
+    {
+      common::ScopedTimer t("solid: assemble jacobian");
+      MatZeroEntries(_Jmat.mat());
+      fem::assemble_matrix(
+          la::petsc::Matrix::set_block_fn(_Jmat.mat(), ADD_VALUES), *_J, _bcs);
+      MatAssemblyBegin(_Jmat.mat(), MAT_FLUSH_ASSEMBLY);
+      MatAssemblyEnd(_Jmat.mat(), MAT_FLUSH_ASSEMBLY);
+      fem::set_diagonal<double>(
+          la::petsc::Matrix::set_fn(_Jmat.mat(), INSERT_VALUES), *_V, _bcs);
+      MatAssemblyBegin(_Jmat.mat(), MAT_FINAL_ASSEMBLY);
+      MatAssemblyEnd(_Jmat.mat(), MAT_FINAL_ASSEMBLY);
+      _solver.set_operator(_Jmat.mat());
+      _J_current = true;
+    }
+    {
+      common::ScopedTimer t("solid: solve");
+      VecScale(_b.vec(), -1.0);
+      _solver.solve(_du.vec(), _b.vec());
+      KSPConvergedReason reason;
+      KSPGetConvergedReason(_solver.ksp(), &reason);
+      if (reason < 0)
+      {
+        throw std::runtime_error(fmt::format(
+            "solid: linear solve failed at t = {:.6g} s, Newton iteration {} "
+            "(KSPConvergedReason {})",
+            _t, it, int(reason)));
+      }
+    }
+    du.scatter_fwd();
+    auto u = _u->x()->mutable_array();
+    auto d = du.array();
+    for (std::size_t i = 0; i < u.size(); ++i)
+      u[i] += d[i];
+    if (linear)
+      return it; // exact in one iteration (J is the exact tangent)
+    const double dnorm = global_norm(du), unorm = global_norm(*_u->x());
+    if (dnorm <= _p.newton_rtol * std::max(unorm, 1e-300))
+      return it;
+  }
+  throw std::runtime_error(fmt::format(
+      "solid: Newton did not converge in {} iterations at t = {:.6g} s ({}); "
+      "reduce the time step or the load increments",
+      _p.newton_max_it, _t, what));
+}
+//-----------------------------------------------------------------------------
+int fsai::structure::ElasticSolver::step()
+{
+  common::ScopedTimer timer("solid: step");
+  // Start from the old state: u_n, v_n, a_n; predictor u = u_n
+  auto cp = [](const fem::Function<double>& s, fem::Function<double>& d)
+  {
+    std::copy(s.x()->array().begin(), s.x()->array().end(),
+              d.x()->mutable_array().begin());
+  };
+  cp(*_u, *_u_n);
+  cp(*_v, *_v_n);
+  cp(*_a, *_a_n);
+  _dynamic->value[0] = 1.0;
+  _load->value[0] = 1.0;
+  _t += _dt;
+  const int its = newton("dynamic step");
+
+  // Newmark update (E18): a = (u − ũ)/(βΔt²), v = v_n + Δt((1−γ)a_n + γa)
+  const double b = _p.newmark_beta, g = _p.newmark_gamma, dt = _dt;
+  auto u = _u->x()->array(), un = _u_n->x()->array(), vn = _v_n->x()->array(),
+       an = _a_n->x()->array();
+  auto v = _v->x()->mutable_array(), a = _a->x()->mutable_array();
+  for (std::size_t i = 0; i < u.size(); ++i)
+  {
+    const double ut = un[i] + dt * vn[i] + (0.5 - b) * dt * dt * an[i];
+    a[i] = (u[i] - ut) / (b * dt * dt);
+    v[i] = vn[i] + dt * ((1 - g) * an[i] + g * a[i]);
+  }
+  return its;
+}
+//-----------------------------------------------------------------------------
+int fsai::structure::ElasticSolver::solve_static(int load_steps)
+{
+  fsai::require(load_steps >= 1, "solid: load steps", ">= 1", load_steps);
+  common::ScopedTimer timer("solid: static solve");
+  _dynamic->value[0] = 0.0;
+  _J_current = false;
+  int its = 0;
+  for (int k = 1; k <= load_steps; ++k)
+  {
+    _load->value[0] = double(k) / load_steps;
+    its += newton(fmt::format("load step {}/{}", k, load_steps));
+  }
+  _dynamic->value[0] = 1.0;
+  _load->value[0] = 1.0;
+  _J_current = false;
+  return its;
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::save_state()
+{
+  _saved.clear();
+  for (auto& f : {_u, _v, _a})
+    _saved.insert(_saved.end(), f->x()->array().begin(), f->x()->array().end());
+  _saved.push_back(_t);
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::restore_state()
+{
+  if (_saved.empty())
+    throw std::runtime_error("solid: restore_state without save_state");
+  std::size_t off = 0;
+  for (auto& f : {_u, _v, _a})
+  {
+    auto x = f->x()->mutable_array();
+    std::copy_n(_saved.begin() + off, x.size(), x.begin());
+    off += x.size();
+  }
+  _t = _saved.back();
+}
+//-----------------------------------------------------------------------------
+namespace
+{
+double quadratic_form(const fem::Form<double>& a, const fem::Function<double>& x)
+{
+  la::petsc::Matrix A(fem::petsc::create_matrix(a), false);
+  MatZeroEntries(A.mat());
+  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A.mat(), ADD_VALUES), a,
+                       {});
+  MatAssemblyBegin(A.mat(), MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A.mat(), MAT_FINAL_ASSEMBLY);
+  la::petsc::Vector xv(la::petsc::create_vector_wrap(*x.x()), false);
+  Vec y;
+  VecDuplicate(xv.vec(), &y);
+  MatMult(A.mat(), xv.vec(), y);
+  PetscScalar r;
+  VecDot(xv.vec(), y, &r);
+  VecDestroy(&y);
+  return r;
+}
+} // namespace
+double fsai::structure::ElasticSolver::kinetic_energy()
+{
+  return 0.5 * quadratic_form(*_M, *_v);
+}
+//-----------------------------------------------------------------------------
+double fsai::structure::ElasticSolver::strain_energy()
+{
+  return 0.5 * quadratic_form(*_K, *_u);
+}
+//-----------------------------------------------------------------------------
+la::petsc::Matrix
+fsai::structure::ElasticSolver::stiffness_matrix(double diagonal) const
+{
+  la::petsc::Matrix A(fem::petsc::create_matrix(*_K), false);
+  MatZeroEntries(A.mat());
+  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A.mat(), ADD_VALUES),
+                       *_K, _bcs);
+  MatAssemblyBegin(A.mat(), MAT_FLUSH_ASSEMBLY);
+  MatAssemblyEnd(A.mat(), MAT_FLUSH_ASSEMBLY);
+  fem::set_diagonal<double>(la::petsc::Matrix::set_fn(A.mat(), INSERT_VALUES),
+                            *_V, _bcs, diagonal);
+  MatAssemblyBegin(A.mat(), MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A.mat(), MAT_FINAL_ASSEMBLY);
+  return A;
+}
+//-----------------------------------------------------------------------------
+la::petsc::Matrix fsai::structure::ElasticSolver::mass_matrix() const
+{
+  la::petsc::Matrix A(fem::petsc::create_matrix(*_M), false);
+  MatZeroEntries(A.mat());
+  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(A.mat(), ADD_VALUES),
+                       *_M, _bcs);
+  MatAssemblyBegin(A.mat(), MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A.mat(), MAT_FINAL_ASSEMBLY);
+  return A;
+}
+//-----------------------------------------------------------------------------

@@ -1,0 +1,144 @@
+// Copyright (C) 2026 fsai developers
+//
+// Elastic solid (shared/DESIGN.md E1, E4, E6, E7, E16–E18; forms in
+// forms/structure.py): linear elasticity or St.Venant–Kirchhoff, P1/P2,
+// plane strain (2D) or 3D, Newmark (β, γ) with Rayleigh damping
+// D = ε1 M + ε2 K, Newton's method on R(u) = 0 every step, static solves
+// with load stepping, and save/restore of the state for the sub-iterations
+// of a partitioned coupling. PETSc options prefix "solid_" (default LU).
+#pragma once
+
+#include <array>
+#include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/Form.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/la/petsc.h>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fsai::common
+{
+class Parameters;
+}
+
+namespace fsai::structure
+{
+/// Isotropic material: Young's modulus E [Pa], Poisson's ratio ν, density
+/// ρ [kg/m³]
+struct Material
+{
+  double E = 8e3;
+  double nu = 0.4;
+  double rho = 1000.0;
+  void validate(const std::string& what) const;
+  double lambda() const { return E * nu / ((1 + nu) * (1 - 2 * nu)); }
+  double mu() const { return E / (2 * (1 + nu)); }
+};
+
+/// Solver parameters ([solid] section)
+struct SolidParameters
+{
+  std::string model = "linear"; ///< "linear" or "svk"
+  int degree = 1;
+  Material material;            ///< default material of every cell
+  double newmark_beta = 0.25;
+  double newmark_gamma = 0.5;
+  double rayleigh_mass = 0.0;      ///< ε1 [1/s]
+  double rayleigh_stiffness = 0.0; ///< ε2 [s]
+  double newton_rtol = 1e-9;       ///< on the update, relative to u
+  double newton_atol = 1e-12;      ///< on the residual norm
+  int newton_max_it = 30;
+
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+};
+
+/// Elastic solid on a fixed reference mesh, displacement u = 0 on the
+/// `fixed` facets, traction on the `loaded` facets.
+class ElasticSolver
+{
+public:
+  /// @param[in] mesh Reference configuration
+  /// @param[in] fixed Facets (local indices) with u = 0
+  /// @param[in] loaded Facets carrying the traction field traction()
+  /// @param[in] params Model, degree, default material, Newmark, Newton
+  /// @param[in] dt Time step [s] (any positive value for static use)
+  ElasticSolver(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+                std::span<const std::int32_t> fixed,
+                std::span<const std::int32_t> loaded,
+                const SolidParameters& params, double dt);
+
+  /// Material of the given cells (local indices); call before solving
+  void set_material(std::span<const std::int32_t> cells, const Material& m);
+  /// Body acceleration g [m/s²] (gravity), scaled by the load factor
+  void set_body_acceleration(std::array<double, 3> g);
+  /// Traction on the loaded facets [Pa] (P1/P2 vector field)
+  dolfinx::fem::Function<double>& traction() { return *_traction; }
+
+  /// One Newmark step t → t + Δt; returns the Newton iterations
+  int step();
+  /// Static equilibrium under the full loads, reached in `load_steps`
+  /// equal increments of the load factor; returns total Newton iterations
+  int solve_static(int load_steps = 1);
+
+  /// Keep / go back to the state at the start of the step (coupling)
+  void save_state();
+  void restore_state();
+
+  std::shared_ptr<dolfinx::fem::Function<double>> displacement() const
+  {
+    return _u;
+  }
+  std::shared_ptr<dolfinx::fem::Function<double>> velocity() const
+  {
+    return _v;
+  }
+  std::shared_ptr<dolfinx::fem::Function<double>> acceleration() const
+  {
+    return _a;
+  }
+  double time() const { return _t; }
+  double dt() const { return _dt; }
+
+  /// ½ vᵀ M v
+  double kinetic_energy();
+  /// ½ uᵀ K u (linear stiffness at the reference state)
+  double strain_energy();
+
+  /// Stiffness (Dirichlet rows/columns zero, diagonal `diagonal`) and mass
+  /// (diagonal 0) for modal analysis: no spurious modes near 0
+  dolfinx::la::petsc::Matrix stiffness_matrix(double diagonal = 1.0) const;
+  dolfinx::la::petsc::Matrix mass_matrix() const;
+
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> space() const
+  {
+    return _V;
+  }
+  /// Density field (DG0) for diagnostics
+  std::shared_ptr<const dolfinx::fem::Function<double>> density() const
+  {
+    return _rho;
+  }
+
+private:
+  int newton(const std::string& what);
+
+  const SolidParameters _p;
+  double _dt, _t = 0.0;
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;
+  std::shared_ptr<dolfinx::fem::Function<double>> _u, _u_n, _v_n, _a_n, _v,
+      _a, _traction, _lambda, _mu, _rho;
+  std::shared_ptr<dolfinx::fem::Constant<double>> _dynamic, _load, _g;
+  std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
+  std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
+  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _loaded_tags;
+  std::shared_ptr<dolfinx::fem::Form<double>> _R, _J, _K, _M;
+  dolfinx::la::petsc::Matrix _Jmat;
+  bool _J_current = false; ///< linear model: J depends on Δt only
+  std::vector<double> _saved;
+  dolfinx::la::petsc::KrylovSolver _solver;
+};
+} // namespace fsai::structure

@@ -1,0 +1,185 @@
+// Copyright (C) 2026 fsai developers
+// Structure (shared/DESIGN.md E4–E7, E16–E18): cantilever modes against
+// Euler–Bernoulli (P2) and the locking of P1, Newmark energy conservation,
+// Rayleigh modal damping, Turek–Hron CSM1 (static St.Venant–Kirchhoff).
+#include "catch.h"
+#include <common/log.h>
+#include <dolfinx/mesh/generation.h>
+#include <dolfinx/mesh/utils.h>
+#include <io/PointProbes.h>
+#include <mesh/benchmarks.h>
+#include <structure/ElasticSolver.h>
+#include <structure/modal.h>
+#include <xtensor/xview.hpp>
+
+namespace
+{
+using fsai::structure::ElasticSolver;
+using fsai::structure::SolidParameters;
+
+std::vector<std::int32_t> facets_at_x0(dolfinx::mesh::Mesh& mesh)
+{
+  const int fdim = mesh.topology().dim() - 1;
+  mesh.topology_mutable().create_connectivity(fdim, fdim + 1);
+  return dolfinx::mesh::locate_entities_boundary(
+      mesh, fdim,
+      [](auto& x) -> xt::xtensor<bool, 1>
+      { return xt::isclose(xt::row(x, 0), 0.0); });
+}
+} // namespace
+
+TEST_CASE("Slender cantilever: P2 bending modes match Euler-Bernoulli, P1 locks",
+          "[structure][mpi]")
+{
+  // L = 1, square section b = 0.01 (L/b = 100: shear and rotary inertia
+  // change f4 by ~0.2 %), 100 x 2 x 2 boxes of 6 tetrahedra
+  const double L = 1.0, b = 0.01, E = 1e7, rho = 1000.0;
+  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
+      MPI_COMM_WORLD, {{{0, 0, 0}, {L, b, b}}}, {100, 2, 2},
+      dolfinx::mesh::CellType::tetrahedron,
+      dolfinx::mesh::GhostMode::shared_facet));
+  const std::array<double, 4> betaL = {1.875104, 4.694091, 7.854757, 10.995541};
+  const double c = std::sqrt(E * b * b / 12.0 / rho) / (L * L);
+  std::array<std::array<double, 4>, 2> err;
+  for (int degree : {1, 2})
+  {
+    SolidParameters p;
+    p.degree = degree;
+    p.material = {E, 0.3, rho};
+    ElasticSolver solid(mesh, facets_at_x0(*mesh), {}, p, 1.0);
+    auto modes = fsai::structure::modal_analysis(solid, 8);
+    REQUIRE(modes.size() == 8);
+    // Bending in y and z: pairs of equal frequencies
+    for (int n = 0; n < 4; ++n)
+    {
+      const double fe = betaL[n] * betaL[n] * c / (2 * M_PI);
+      const double f = 0.5 * (modes[2 * n].frequency_hz
+                              + modes[2 * n + 1].frequency_hz);
+      err[degree - 1][n] = (f - fe) / fe;
+      fsai::log::info("Structure cantilever P{} f{} = {:.5f} Hz (Euler-Bernoulli "
+                      "{:.5f}, {:+.3f}%)",
+                      degree, n + 1, f, fe, 100 * err[degree - 1][n]);
+    }
+  }
+  for (int n = 0; n < 4; ++n)
+  {
+    CHECK(std::abs(err[1][n]) < 0.01); // P2 within 1 %
+    CHECK(err[0][n] > 0.10);           // P1 on the same mesh: locked, > 10 % stiff
+  }
+}
+
+TEST_CASE("Undamped Newmark conserves the elastic energy", "[structure][mpi]")
+{
+  // Plane-strain cantilever set in motion by an initial velocity; linear
+  // model, β = 1/4, γ = 1/2: kinetic + strain energy is a discrete invariant
+  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(
+      dolfinx::mesh::create_rectangle(MPI_COMM_WORLD, {{{0, 0}, {1, 0.1}}},
+                                      {20, 2},
+                                      dolfinx::mesh::CellType::triangle,
+                                      dolfinx::mesh::GhostMode::shared_facet));
+  SolidParameters p;
+  p.material = {1e5, 0.3, 100.0};
+  ElasticSolver solid(mesh, facets_at_x0(*mesh), {}, p, 2e-3);
+  solid.velocity()->interpolate(
+      [](auto& x) -> xt::xarray<double>
+      {
+        xt::xarray<double> v = xt::zeros<double>({std::size_t(2), x.shape(1)});
+        xt::row(v, 1) = xt::row(x, 0);
+        return v;
+      });
+  const double e0 = solid.kinetic_energy() + solid.strain_energy();
+  double worst = 0.0;
+  for (int k = 0; k < 10000; ++k)
+  {
+    solid.step();
+    if (k % 500 == 499)
+    {
+      const double e = solid.kinetic_energy() + solid.strain_energy();
+      worst = std::max(worst, std::abs(e - e0) / e0);
+    }
+  }
+  fsai::log::info("Structure energy: 1e4 Newmark steps, max relative drift "
+                  "{:.2e}",
+                  worst);
+  CHECK(worst < 1e-8);
+}
+
+TEST_CASE("Rayleigh damping gives the modal damping ratio", "[structure][mpi]")
+{
+  // Start in mode 1 (velocity φ, a = −(ε1 + ε2 ω²) φ): the free decay has
+  // ζ = ε1/(2ω) + ε2 ω/2, measured by the logarithmic decrement of the
+  // tip displacement peaks
+  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(
+      dolfinx::mesh::create_rectangle(MPI_COMM_WORLD, {{{0, 0}, {1, 0.1}}},
+                                      {20, 2},
+                                      dolfinx::mesh::CellType::triangle,
+                                      dolfinx::mesh::GhostMode::shared_facet));
+  SolidParameters p;
+  p.degree = 2;
+  p.material = {1e5, 0.3, 100.0};
+  ElasticSolver probe_solid(mesh, facets_at_x0(*mesh), {}, p, 1.0);
+  auto modes = fsai::structure::modal_analysis(probe_solid, 1);
+  const double w = 2 * M_PI * modes[0].frequency_hz;
+  p.rayleigh_mass = 0.02 * w;       // ζ_mass = 0.01
+  p.rayleigh_stiffness = 0.03 / w;  // ζ_stiff = 0.015
+  const double zeta = p.rayleigh_mass / (2 * w) + p.rayleigh_stiffness * w / 2;
+  const double T = 2 * M_PI / w, dt = T / 200;
+  ElasticSolver solid(mesh, facets_at_x0(*mesh), {}, p, dt);
+  auto phi = modes[0].shape->x()->array();
+  auto v = solid.velocity()->x()->mutable_array();
+  auto a = solid.acceleration()->x()->mutable_array();
+  for (std::size_t i = 0; i < v.size(); ++i)
+  {
+    v[i] = phi[i];
+    a[i] = -(p.rayleigh_mass + p.rayleigh_stiffness * w * w) * phi[i];
+  }
+  fsai::io::PointProbes tip(mesh, {{1.0, 0.05, 0.0}});
+  std::vector<double> y;
+  for (int k = 0; k < 200 * 6; ++k)
+  {
+    solid.step();
+    y.push_back(tip.values(*solid.displacement())[1]);
+  }
+  // Peaks (parabolic interpolation) of |y|
+  std::vector<double> peaks;
+  for (std::size_t i = 1; i + 1 < y.size(); ++i)
+  {
+    if (y[i] > y[i - 1] and y[i] >= y[i + 1])
+    {
+      const double d = y[i - 1] - 2 * y[i] + y[i + 1];
+      peaks.push_back(y[i] - 0.125 * (y[i + 1] - y[i - 1])
+                                 * (y[i + 1] - y[i - 1]) / d);
+    }
+  }
+  REQUIRE(peaks.size() >= 4);
+  const double delta = std::log(peaks[0] / peaks[3]) / 3.0;
+  const double zeta_m = delta / std::sqrt(4 * M_PI * M_PI + delta * delta);
+  fsai::log::info("Structure Rayleigh damping: zeta expected {:.5f}, measured "
+                  "{:.5f} ({:+.2f}%)",
+                  zeta, zeta_m, 100 * (zeta_m - zeta) / zeta);
+  CHECK(zeta_m == Approx(zeta).epsilon(0.02));
+}
+
+TEST_CASE("Turek-Hron CSM1: static St.Venant-Kirchhoff beam under gravity",
+          "[structure][mpi]")
+{
+  // ρ = 1000, ν = 0.4, μ = 0.5e6 (E = 1.4e6), g = 2 m/s² down; reference
+  // (FeatFlow finest): ux(A) = −7.187e−3 m, uy(A) = −66.10e−3 m
+  auto m = fsai::mesh::turek_hron_beam(MPI_COMM_WORLD, 0.004);
+  SolidParameters p;
+  p.model = "svk";
+  p.degree = 2;
+  p.material = {1.4e6, 0.4, 1000.0};
+  ElasticSolver solid(m.mesh, m.facet_tags->find(m.facet_tag("clamped")), {},
+                      p, 1.0);
+  solid.set_body_acceleration({0.0, -2.0, 0.0});
+  const int its = solid.solve_static(4);
+  fsai::io::PointProbes A(m.mesh, {{0.6, 0.2, 0.0}});
+  auto uA = A.values(*solid.displacement());
+  fsai::log::info("Structure CSM1: ux(A) = {:.5e} m (ref -7.187e-3, {:+.2f}%), "
+                  "uy(A) = {:.5e} m (ref -66.10e-3, {:+.2f}%), {} Newton its",
+                  uA[0], 100 * (uA[0] + 7.187e-3) / -7.187e-3, uA[1],
+                  100 * (uA[1] + 66.10e-3) / -66.10e-3, its);
+  CHECK(uA[1] == Approx(-66.10e-3).epsilon(0.01));
+  CHECK(uA[0] == Approx(-7.187e-3).epsilon(0.02));
+}
