@@ -28,8 +28,9 @@ std::vector<std::int32_t> facets_at_x0(dolfinx::mesh::Mesh& mesh)
 }
 } // namespace
 
-TEST_CASE("Slender cantilever: P2 bending modes match Euler-Bernoulli, P1 locks",
-          "[structure][mpi]")
+TEST_CASE(
+    "Slender cantilever: P2 bending modes match Euler-Bernoulli, P1 locks",
+    "[structure][mpi]")
 {
   // L = 1, square section b = 0.01 (L/b = 100: shear and rotary inertia
   // change f4 by ~0.2 %), 100 x 2 x 2 boxes of 6 tetrahedra
@@ -53,18 +54,19 @@ TEST_CASE("Slender cantilever: P2 bending modes match Euler-Bernoulli, P1 locks"
     for (int n = 0; n < 4; ++n)
     {
       const double fe = betaL[n] * betaL[n] * c / (2 * M_PI);
-      const double f = 0.5 * (modes[2 * n].frequency_hz
-                              + modes[2 * n + 1].frequency_hz);
+      const double f
+          = 0.5 * (modes[2 * n].frequency_hz + modes[2 * n + 1].frequency_hz);
       err[degree - 1][n] = (f - fe) / fe;
-      fsai::log::info("Structure cantilever P{} f{} = {:.5f} Hz (Euler-Bernoulli "
-                      "{:.5f}, {:+.3f}%)",
-                      degree, n + 1, f, fe, 100 * err[degree - 1][n]);
+      fsai::log::info(
+          "Structure cantilever P{} f{} = {:.5f} Hz (Euler-Bernoulli "
+          "{:.5f}, {:+.3f}%)",
+          degree, n + 1, f, fe, 100 * err[degree - 1][n]);
     }
   }
   for (int n = 0; n < 4; ++n)
   {
     CHECK(std::abs(err[1][n]) < 0.01); // P2 within 1 %
-    CHECK(err[0][n] > 0.10);           // P1 on the same mesh: locked, > 10 % stiff
+    CHECK(err[0][n] > 0.10); // P1 on the same mesh: locked, > 10 % stiff
   }
 }
 
@@ -72,11 +74,11 @@ TEST_CASE("Undamped Newmark conserves the elastic energy", "[structure][mpi]")
 {
   // Plane-strain cantilever set in motion by an initial velocity; linear
   // model, β = 1/4, γ = 1/2: kinetic + strain energy is a discrete invariant
-  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(
-      dolfinx::mesh::create_rectangle(MPI_COMM_WORLD, {{{0, 0}, {1, 0.1}}},
-                                      {20, 2},
-                                      dolfinx::mesh::CellType::triangle,
-                                      dolfinx::mesh::GhostMode::shared_facet));
+  auto mesh
+      = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_rectangle(
+          MPI_COMM_WORLD, {{{0, 0}, {1, 0.1}}}, {20, 2},
+          dolfinx::mesh::CellType::triangle,
+          dolfinx::mesh::GhostMode::shared_facet));
   SolidParameters p;
   p.material = {1e5, 0.3, 100.0};
   ElasticSolver solid(mesh, facets_at_x0(*mesh), {}, p, 2e-3);
@@ -109,19 +111,19 @@ TEST_CASE("Rayleigh damping gives the modal damping ratio", "[structure][mpi]")
   // Start in mode 1 (velocity φ, a = −(ε1 + ε2 ω²) φ): the free decay has
   // ζ = ε1/(2ω) + ε2 ω/2, measured by the logarithmic decrement of the
   // tip displacement peaks
-  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(
-      dolfinx::mesh::create_rectangle(MPI_COMM_WORLD, {{{0, 0}, {1, 0.1}}},
-                                      {20, 2},
-                                      dolfinx::mesh::CellType::triangle,
-                                      dolfinx::mesh::GhostMode::shared_facet));
+  auto mesh
+      = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_rectangle(
+          MPI_COMM_WORLD, {{{0, 0}, {1, 0.1}}}, {20, 2},
+          dolfinx::mesh::CellType::triangle,
+          dolfinx::mesh::GhostMode::shared_facet));
   SolidParameters p;
   p.degree = 2;
   p.material = {1e5, 0.3, 100.0};
   ElasticSolver probe_solid(mesh, facets_at_x0(*mesh), {}, p, 1.0);
   auto modes = fsai::structure::modal_analysis(probe_solid, 1);
   const double w = 2 * M_PI * modes[0].frequency_hz;
-  p.rayleigh_mass = 0.02 * w;       // ζ_mass = 0.01
-  p.rayleigh_stiffness = 0.03 / w;  // ζ_stiff = 0.015
+  p.rayleigh_mass = 0.02 * w;      // ζ_mass = 0.01
+  p.rayleigh_stiffness = 0.03 / w; // ζ_stiff = 0.015
   const double zeta = p.rayleigh_mass / (2 * w) + p.rayleigh_stiffness * w / 2;
   const double T = 2 * M_PI / w, dt = T / 200;
   ElasticSolver solid(mesh, facets_at_x0(*mesh), {}, p, dt);
@@ -147,8 +149,8 @@ TEST_CASE("Rayleigh damping gives the modal damping ratio", "[structure][mpi]")
     if (y[i] > y[i - 1] and y[i] >= y[i + 1])
     {
       const double d = y[i - 1] - 2 * y[i] + y[i + 1];
-      peaks.push_back(y[i] - 0.125 * (y[i + 1] - y[i - 1])
-                                 * (y[i + 1] - y[i - 1]) / d);
+      peaks.push_back(
+          y[i] - 0.125 * (y[i + 1] - y[i - 1]) * (y[i + 1] - y[i - 1]) / d);
     }
   }
   REQUIRE(peaks.size() >= 4);
@@ -170,8 +172,8 @@ TEST_CASE("Turek-Hron CSM1: static St.Venant-Kirchhoff beam under gravity",
   p.model = "svk";
   p.degree = 2;
   p.material = {1.4e6, 0.4, 1000.0};
-  ElasticSolver solid(m.mesh, m.facet_tags->find(m.facet_tag("clamped")), {},
-                      p, 1.0);
+  ElasticSolver solid(m.mesh, m.facet_tags->find(m.facet_tag("clamped")), {}, p,
+                      1.0);
   solid.set_body_acceleration({0.0, -2.0, 0.0});
   const int its = solid.solve_static(4);
   fsai::io::PointProbes A(m.mesh, {{0.6, 0.2, 0.0}});
@@ -182,4 +184,56 @@ TEST_CASE("Turek-Hron CSM1: static St.Venant-Kirchhoff beam under gravity",
                   100 * (uA[1] + 66.10e-3) / -66.10e-3, its);
   CHECK(uA[1] == Approx(-66.10e-3).epsilon(0.01));
   CHECK(uA[0] == Approx(-7.187e-3).epsilon(0.02));
+}
+
+TEST_CASE("Turek-Hron CSM3: dynamic St.Venant-Kirchhoff beam under gravity",
+          "[.long][structure]")
+{
+  // From rest, g = 2 m/s² switched on at t = 0; Δt = 0.005 s as the
+  // FeatFlow reference (shared/references/turek_hron_results.csv):
+  // uy(A) mean −0.063607 m, amplitude 0.06516 m, frequency 1.0995 Hz.
+  // Measured over the last 5 s of 10 s.
+  auto m = fsai::mesh::turek_hron_beam(MPI_COMM_WORLD, 0.004);
+  SolidParameters p;
+  p.model = "svk";
+  p.degree = 2;
+  p.material = {1.4e6, 0.4, 1000.0};
+  const double dt = 0.005, T = 10.0;
+  ElasticSolver solid(m.mesh, m.facet_tags->find(m.facet_tag("clamped")), {}, p,
+                      dt);
+  solid.set_body_acceleration({0.0, -2.0, 0.0});
+  // a(0) = g: the beam starts undeformed and at rest, so M a = ρ g
+  auto a = solid.acceleration()->x()->mutable_array();
+  for (std::size_t i = 1; i < a.size(); i += 2)
+    a[i] = -2.0;
+  fsai::io::PointProbes A(m.mesh, {{0.6, 0.2, 0.0}});
+  std::vector<double> t, y;
+  const int n = int(std::lround(T / dt));
+  for (int k = 1; k <= n; ++k)
+  {
+    solid.step();
+    if (k * dt >= 5.0)
+    {
+      t.push_back(k * dt);
+      y.push_back(A.values(*solid.displacement())[1]);
+    }
+  }
+  const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+  const double mean = 0.5 * (*lo + *hi), amp = 0.5 * (*hi - *lo);
+  // Frequency from upward crossings of the mean (linear interpolation)
+  std::vector<double> cross;
+  for (std::size_t i = 1; i < y.size(); ++i)
+    if (y[i - 1] < mean and y[i] >= mean)
+      cross.push_back(t[i - 1] + dt * (mean - y[i - 1]) / (y[i] - y[i - 1]));
+  REQUIRE(cross.size() >= 3);
+  const double freq = (cross.size() - 1) / (cross.back() - cross.front());
+  fsai::log::info(
+      "Structure CSM3: uy(A) mean {:.5e} (ref -6.3607e-2, {:+.2f}%), "
+      "amplitude {:.5e} (ref 6.516e-2, {:+.2f}%), frequency {:.4f} Hz "
+      "(ref 1.0995, {:+.2f}%)",
+      mean, 100 * (mean + 0.063607) / -0.063607, amp,
+      100 * (amp - 0.06516) / 0.06516, freq, 100 * (freq - 1.0995) / 1.0995);
+  CHECK(mean == Approx(-0.063607).epsilon(0.03));
+  CHECK(amp == Approx(0.06516).epsilon(0.03));
+  CHECK(freq == Approx(1.0995).epsilon(0.03));
 }

@@ -16,11 +16,12 @@ namespace structure_forms = fsai::forms::structure;
 
 namespace
 {
-std::string lu_package(MPI_Comm comm)
+/// PETSc's own LU for small serial 2D problems, MUMPS otherwise (3D fill)
+std::string lu_package(MPI_Comm comm, int tdim)
 {
   int size;
   MPI_Comm_size(comm, &size);
-  return size == 1 ? "petsc" : "mumps";
+  return size == 1 and tdim == 2 ? "petsc" : "mumps";
 }
 
 double global_norm(const la::Vector<double>& x)
@@ -47,7 +48,8 @@ void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
   p.add("solid.rho", material.rho, "density [kg/m^3]");
   p.add("solid.newmark_beta", newmark_beta, "Newmark beta");
   p.add("solid.newmark_gamma", newmark_gamma, "Newmark gamma");
-  p.add("solid.rayleigh_mass", rayleigh_mass, "Rayleigh eps1 (D = eps1 M + eps2 K) [1/s]");
+  p.add("solid.rayleigh_mass", rayleigh_mass,
+        "Rayleigh eps1 (D = eps1 M + eps2 K) [1/s]");
   p.add("solid.rayleigh_stiffness", rayleigh_stiffness, "Rayleigh eps2 [s]");
   p.add("solid.newton_rtol", newton_rtol, "Newton tolerance on |du|/|u|");
   p.add("solid.newton_max_it", newton_max_it, "Newton iteration limit");
@@ -133,9 +135,14 @@ fsai::structure::ElasticSolver::ElasticSolver(
          {"load", _load},
          {"g", _g}};
   std::map<std::string, std::shared_ptr<const fem::Function<double>>> coeffs
-      = {{"u", _u},         {"u_n", _u_n}, {"v_n", _v_n},
-         {"a_n", _a_n},     {"traction", _traction},
-         {"lmbda", _lambda}, {"mu", _mu},   {"rho", _rho}};
+      = {{"u", _u},
+         {"u_n", _u_n},
+         {"v_n", _v_n},
+         {"a_n", _a_n},
+         {"traction", _traction},
+         {"lmbda", _lambda},
+         {"mu", _mu},
+         {"rho", _rho}};
 
   // Dirichlet u = 0 and the loaded boundary (ds(1))
   const int fdim = tdim - 1;
@@ -166,7 +173,7 @@ fsai::structure::ElasticSolver::ElasticSolver(
   common::set_option_default("solid_ksp_type", "preonly");
   common::set_option_default("solid_pc_type", "lu");
   common::set_option_default("solid_pc_factor_mat_solver_type",
-                             lu_package(mesh->comm()));
+                             lu_package(mesh->comm(), tdim));
   // Absolute zero-pivot test of PETSc vs soft tissue (E ~ kPa, small cells)
   common::set_option_default("solid_pc_factor_zeropivot", "0");
   _solver.set_options_prefix("solid_");
@@ -348,7 +355,8 @@ void fsai::structure::ElasticSolver::restore_state()
 //-----------------------------------------------------------------------------
 namespace
 {
-double quadratic_form(const fem::Form<double>& a, const fem::Function<double>& x)
+double quadratic_form(const fem::Form<double>& a,
+                      const fem::Function<double>& x)
 {
   la::petsc::Matrix A(fem::petsc::create_matrix(a), false);
   MatZeroEntries(A.mat());

@@ -43,7 +43,7 @@ struct SolidParameters
 {
   std::string model = "linear"; ///< "linear" or "svk"
   int degree = 1;
-  Material material;            ///< default material of every cell
+  Material material; ///< default material of every cell
   double newmark_beta = 0.25;
   double newmark_gamma = 0.5;
   double rayleigh_mass = 0.0;      ///< ε1 [1/s]
@@ -129,8 +129,8 @@ private:
   const SolidParameters _p;
   double _dt, _t = 0.0;
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;
-  std::shared_ptr<dolfinx::fem::Function<double>> _u, _u_n, _v_n, _a_n, _v,
-      _a, _traction, _lambda, _mu, _rho;
+  std::shared_ptr<dolfinx::fem::Function<double>> _u, _u_n, _v_n, _a_n, _v, _a,
+      _traction, _lambda, _mu, _rho;
   std::shared_ptr<dolfinx::fem::Constant<double>> _dynamic, _load, _g;
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;

@@ -1,0 +1,157 @@
+// Copyright (C) 2026 fsai developers
+#include "vocal_fold.h"
+#include "../common/Parameters.h"
+#include "../common/errors.h"
+#include "gmsh_model.h"
+#include <cmath>
+#include <dolfinx/mesh/utils.h>
+#include <gmsh.h>
+#include <numeric>
+
+//-----------------------------------------------------------------------------
+void fsai::mesh::VocalFoldGeometry::bind(fsai::common::Parameters& p)
+{
+  p.add("fold.depth", depth, "lateral-medial depth [m]");
+  p.add("fold.height", height, "height at the lateral wall [m]");
+  p.add("fold.length", length, "anterior-posterior length [m]");
+  p.add("fold.a", a, "superior-medial corner, horizontal semi-axis [m]");
+  p.add("fold.b", b, "superior-medial corner, vertical semi-axis [m]");
+  p.add("fold.t_medial", t_medial, "height of the vertical medial surface [m]");
+  p.add("fold.r_inf", r_inf, "inferior-medial corner radius [m]");
+  p.add("fold.cover", cover, "cover thickness of a two-layer fold [m]");
+  p.add("fold.h", h, "mesh size [m]");
+}
+//-----------------------------------------------------------------------------
+void fsai::mesh::VocalFoldGeometry::validate() const
+{
+  for (auto [name, v] : {std::pair{"depth", depth}, {"height", height},
+                         {"length", length}, {"a", a}, {"b", b},
+                         {"t_medial", t_medial}, {"r_inf", r_inf},
+                         {"cover", cover}, {"h", h}})
+  {
+    fsai::require_positive(std::string("--fold.") + name, v);
+  }
+  fsai::require(a + r_inf < depth, "--fold.a", "< depth - r_inf", a);
+  fsai::require(b + t_medial + r_inf < height, "--fold.b",
+                "< height - t_medial - r_inf", b);
+  fsai::require(h <= 0.5 * std::min(depth, length), "--fold.h",
+                "<= half the depth and the length", h);
+  fsai::require(std::pow(std::max(depth, length) / h, 3) < 2e7, "--fold.h",
+                "large enough for at most ~1e8 cells", h);
+}
+//-----------------------------------------------------------------------------
+std::vector<std::array<double, 2>>
+fsai::mesh::VocalFoldGeometry::free_profile() const
+{
+  const int n = 12; // segments per rounded corner
+  std::vector<std::array<double, 2>> p{{0.0, height}};
+  const double cx = depth - a, cy = height - b;
+  for (int i = 0; i <= n; ++i) // superior-medial corner, 90° → 0°
+  {
+    const double t = 0.5 * M_PI * (1.0 - double(i) / n);
+    p.push_back({cx + a * std::cos(t), cy + b * std::sin(t)});
+  }
+  const double y1 = cy - t_medial; // bottom of the medial surface
+  const double ix = depth - r_inf;
+  for (int i = 0; i <= n; ++i) // inferior-medial corner, 0° → −90°
+  {
+    const double t = -0.5 * M_PI * double(i) / n;
+    p.push_back({ix + r_inf * std::cos(t), y1 + r_inf * std::sin(t)});
+  }
+  p.push_back({0.0, 0.0}); // inferior surface down to the lateral wall
+  return p;
+}
+//-----------------------------------------------------------------------------
+fsai::mesh::MeshData fsai::mesh::vocal_fold(MPI_Comm comm,
+                                            const VocalFoldGeometry& g)
+{
+  g.validate();
+  return build_with_gmsh(
+      comm, 3,
+      [&]()
+      {
+        namespace occ = gmsh::model::occ;
+        gmsh::model::add("vocal_fold");
+        std::vector<int> pts;
+        for (auto [x, y] : g.free_profile())
+          pts.push_back(occ::addPoint(x, y, 0.0));
+        std::vector<int> lines;
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i)
+          lines.push_back(occ::addLine(pts[i], pts[i + 1]));
+        lines.push_back(occ::addLine(pts.back(), pts.front())); // lateral wall
+        const int s = occ::addPlaneSurface({occ::addCurveLoop(lines)});
+        gmsh::vectorpair out;
+        occ::extrude({{2, s}}, 0.0, 0.0, g.length, out);
+        occ::synchronize();
+        int volume = -1;
+        for (auto [d, t] : out)
+          if (d == 3)
+            volume = t;
+
+        gmsh::vectorpair faces;
+        gmsh::model::getBoundary({{3, volume}}, faces, false, false, false);
+        const double tol = 1e-6 * g.length;
+        std::vector<int> lateral, anterior, posterior, surface;
+        for (auto [d, f] : faces)
+        {
+          double x0, y0, z0, x1, y1, z1;
+          gmsh::model::getBoundingBox(2, std::abs(f), x0, y0, z0, x1, y1, z1);
+          if (x1 < 10 * tol)
+            lateral.push_back(std::abs(f));
+          else if (z1 < 10 * tol)
+            anterior.push_back(std::abs(f));
+          else if (z0 > g.length - 10 * tol)
+            posterior.push_back(std::abs(f));
+          else
+            surface.push_back(std::abs(f));
+        }
+        auto group = [](int dim, const std::vector<int>& t, int id,
+                        const std::string& name)
+        {
+          gmsh::model::addPhysicalGroup(dim, t, id);
+          gmsh::model::setPhysicalName(dim, id, name);
+        };
+        group(2, lateral, 1, "lateral");
+        group(2, anterior, 2, "anterior");
+        group(2, posterior, 3, "posterior");
+        group(2, surface, 4, "surface");
+        group(3, {volume}, 1, "fold");
+        gmsh::option::setNumber("Mesh.MeshSizeMax", g.h);
+        gmsh::option::setNumber("Mesh.MeshSizeMin", 0.25 * g.h);
+        gmsh::model::mesh::generate(3);
+      });
+}
+//-----------------------------------------------------------------------------
+std::vector<std::int32_t>
+fsai::mesh::cover_cells(const dolfinx::mesh::Mesh& mesh,
+                        const VocalFoldGeometry& g)
+{
+  const int tdim = mesh.topology().dim();
+  const std::int32_t n = mesh.topology().index_map(tdim)->size_local()
+                         + mesh.topology().index_map(tdim)->num_ghosts();
+  std::vector<std::int32_t> all(n);
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<double> mid = dolfinx::mesh::compute_midpoints(mesh, tdim, all);
+  const auto poly = g.free_profile();
+  std::vector<std::int32_t> cover;
+  for (std::int32_t c = 0; c < n; ++c)
+  {
+    const double px = mid[3 * c], py = mid[3 * c + 1];
+    double d2 = 1e300;
+    for (std::size_t i = 0; i + 1 < poly.size(); ++i)
+    {
+      const auto [ax, ay] = poly[i];
+      const auto [bx, by] = poly[i + 1];
+      const double ex = bx - ax, ey = by - ay;
+      const double t = std::clamp(((px - ax) * ex + (py - ay) * ey)
+                                      / (ex * ex + ey * ey),
+                                  0.0, 1.0);
+      const double dx = px - ax - t * ex, dy = py - ay - t * ey;
+      d2 = std::min(d2, dx * dx + dy * dy);
+    }
+    if (d2 < g.cover * g.cover)
+      cover.push_back(c);
+  }
+  return cover;
+}
+//-----------------------------------------------------------------------------

@@ -1,0 +1,57 @@
+// Copyright (C) 2026 fsai developers
+#pragma once
+
+#include "MeshData.h"
+#include <array>
+#include <mpi.h>
+#include <vector>
+
+namespace fsai::common
+{
+class Parameters;
+}
+
+namespace fsai::mesh
+{
+/// Parametric 3D vocal fold ([fold] section): a coronal profile in the
+/// (x, y) plane — x from the lateral (thyroid) wall x = 0 towards the
+/// glottal midline, y from inferior to superior — extruded along z
+/// (anterior → posterior) over the fold length.
+///
+/// The profile follows the shape of the M5 family of Scherer et al. (2001)
+/// in simplified, explicit form: a horizontal superior surface, a rounded
+/// superior-medial corner (semi-axes a, b), a vertical medial (contact)
+/// surface of height t_medial, a rounded inferior-medial corner (radius
+/// r_inf), and a straight inferior surface running down to the lateral wall.
+/// Defaults: depth 8.4 mm and height 10 mm (M5-sized), 17 mm long (adult
+/// male membranous fold, 15–18 mm).
+struct VocalFoldGeometry
+{
+  double depth = 8.4e-3;     ///< lateral → medial extent [m]
+  double height = 10e-3;     ///< at the lateral wall [m]
+  double length = 17e-3;     ///< anterior → posterior [m]
+  double a = 2e-3;           ///< superior-medial corner, horizontal semi-axis
+  double b = 2e-3;           ///< superior-medial corner, vertical semi-axis
+  double t_medial = 1e-3;    ///< vertical medial surface
+  double r_inf = 1e-3;       ///< inferior-medial corner radius
+  double cover = 1e-3;       ///< cover thickness for two-layer folds [m]
+  double h = 1e-3;           ///< mesh size [m]
+
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+
+  /// The free (air-facing) boundary of the profile, superior-lateral end
+  /// to inferior-lateral end, as a polyline in (x, y)
+  std::vector<std::array<double, 2>> free_profile() const;
+};
+
+/// Tetrahedral mesh of the fold. Facet groups "lateral" (x = 0, 1),
+/// "anterior" (z = 0, 2), "posterior" (z = length, 3), "surface" (the free
+/// surface, 4); cell group "fold" (1).
+MeshData vocal_fold(MPI_Comm comm, const VocalFoldGeometry& g);
+
+/// Local cells whose midpoint lies within g.cover of the free surface
+/// (the cover of a body–cover fold)
+std::vector<std::int32_t> cover_cells(const dolfinx::mesh::Mesh& mesh,
+                                      const VocalFoldGeometry& g);
+} // namespace fsai::mesh
