@@ -61,8 +61,9 @@ struct ModalParameters
 
 const char* direction_word(int d)
 {
-  return d == 0 ? "medial-lateral" : d == 1 ? "inferior-superior"
-                                            : "anterior-posterior";
+  return d == 0   ? "medial-lateral"
+         : d == 1 ? "inferior-superior"
+                  : "anterior-posterior";
 }
 } // namespace
 
@@ -122,12 +123,12 @@ int main(int argc, char* argv[])
         for (int i = 1; i < nz; ++i)
           line.push_back({xm, ym, geo.length * i / nz});
         fsai::io::PointProbes probes(m.mesh, line);
-        fsai::io::CsvWriter csv(rt.comm(), mp.output + "/modes.csv",
-                                {"mode", "f_hz", "share_x", "share_y",
-                                 "share_z", "ap_half_waves"});
-        fsai::io::TimeSeriesWriter xdmf(mp.output + "/modes.xdmf",
-                                        {modes.empty() ? nullptr
-                                                       : modes[0].shape});
+        fsai::io::CsvWriter csv(
+            rt.comm(), mp.output + "/modes.csv",
+            {"mode", "f_hz", "share_x", "share_y", "share_z", "ap_half_waves"});
+        fsai::io::TimeSeriesWriter xdmf(
+            mp.output + "/modes.xdmf",
+            {modes.empty() ? nullptr : modes[0].shape});
         std::vector<double> freqs;
         std::vector<std::string> words;
         fsai::log::info("{:>4} {:>10}  {:<34} {:>22}", "mode", "f [Hz]",

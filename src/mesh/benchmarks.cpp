@@ -56,3 +56,71 @@ fsai::mesh::MeshData fsai::mesh::turek_hron_beam(MPI_Comm comm, double h)
         gmsh::model::mesh::generate(2);
       });
 }
+//-----------------------------------------------------------------------------
+fsai::mesh::MeshData fsai::mesh::dfg_channel(MPI_Comm comm, double h,
+                                             double h_cyl)
+{
+  fsai::require(h > 0 and h <= 0.1, "DFG channel: mesh size h", "in (0, 0.1] m",
+                h);
+  fsai::require(h_cyl > 2e-4 and h_cyl <= h, "DFG channel: cylinder mesh size",
+                "in (2e-4, h] m", h_cyl);
+  return build_with_gmsh(
+      comm, 2,
+      [&]()
+      {
+        namespace occ = gmsh::model::occ;
+        gmsh::model::add("dfg_channel");
+        const int rect = occ::addRectangle(0.0, 0.0, 0.0, 2.2, 0.41);
+        const int disk = occ::addDisk(0.2, 0.2, 0.0, 0.05, 0.05);
+        gmsh::vectorpair out;
+        std::vector<gmsh::vectorpair> map;
+        occ::cut({{2, rect}}, {{2, disk}}, out, map);
+        occ::synchronize();
+        gmsh::vectorpair boundary;
+        gmsh::model::getBoundary(out, boundary, true, false, false);
+        std::vector<int> inlet, outlet, walls, cylinder;
+        for (auto [d, c] : boundary)
+        {
+          c = std::abs(c);
+          double x0, y0, z0, x1, y1, z1;
+          gmsh::model::getBoundingBox(1, c, x0, y0, z0, x1, y1, z1);
+          if (x1 < 1e-6)
+            inlet.push_back(c);
+          else if (x0 > 2.2 - 1e-6)
+            outlet.push_back(c);
+          else if (y1 < 1e-6 or y0 > 0.41 - 1e-6)
+            walls.push_back(c);
+          else
+            cylinder.push_back(c);
+        }
+        int id = 1;
+        for (auto [name, tags] : {std::pair{"inlet", inlet},
+                                  {"outlet", outlet},
+                                  {"walls", walls},
+                                  {"cylinder", cylinder}})
+        {
+          gmsh::model::addPhysicalGroup(1, tags, id);
+          gmsh::model::setPhysicalName(1, id++, name);
+        }
+        gmsh::model::addPhysicalGroup(2, {out[0].second}, 1);
+        gmsh::model::setPhysicalName(2, 1, "fluid");
+
+        // Size: h_cyl on the cylinder, growing linearly to h at 0.3 m
+        std::vector<double> cyl(cylinder.begin(), cylinder.end());
+        const int fd = gmsh::model::mesh::field::add("Distance");
+        gmsh::model::mesh::field::setNumbers(fd, "CurvesList", cyl);
+        gmsh::model::mesh::field::setNumber(fd, "NumPointsPerCurve", 200);
+        const int ft = gmsh::model::mesh::field::add("Threshold");
+        gmsh::model::mesh::field::setNumber(ft, "InField", fd);
+        gmsh::model::mesh::field::setNumber(ft, "SizeMin", h_cyl);
+        gmsh::model::mesh::field::setNumber(ft, "SizeMax", h);
+        gmsh::model::mesh::field::setNumber(ft, "DistMin", 0.0);
+        gmsh::model::mesh::field::setNumber(ft, "DistMax", 0.3);
+        gmsh::model::mesh::field::setAsBackgroundMesh(ft);
+        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+        gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+        gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+        gmsh::option::setNumber("Mesh.Algorithm", 6);
+        gmsh::model::mesh::generate(2);
+      });
+}

@@ -14,3 +14,14 @@ namespace fsai::mesh
 /// "beam" (1). Point A = (0.6, 0.2) is a mesh vertex.
 MeshData turek_hron_beam(MPI_Comm comm, double h);
 } // namespace fsai::mesh
+
+namespace fsai::mesh
+{
+/// The channel of the DFG "flow around a cylinder" benchmark (Schäfer &
+/// Turek 1996, dfg_cylinder.csv): [0, 2.2] x [0, 0.41] m without the
+/// cylinder of radius 0.05 m centred at (0.2, 0.2). Triangles of size
+/// h_cyl on the cylinder growing to h in the far field (gmsh distance
+/// field). Facet groups "inlet" (1), "outlet" (2), "walls" (3),
+/// "cylinder" (4); cell group "fluid" (1).
+MeshData dfg_channel(MPI_Comm comm, double h, double h_cyl);
+} // namespace fsai::mesh

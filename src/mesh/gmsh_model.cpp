@@ -137,7 +137,9 @@ void run_on_root(MPI_Comm comm, int root, const std::function<void()>& fn,
     catch (const std::string& e)
     {
       // gmsh 4.8 throws its error messages as std::string
-      error = "gmsh: " + (e.empty() ? std::string("unknown error") : e);
+      error = e.empty()                 ? std::string("gmsh: unknown error")
+              : e.rfind("gmsh", 0) == 0 ? e
+                                        : "gmsh: " + e;
     }
     catch (...)
     {

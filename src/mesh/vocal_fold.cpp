@@ -24,10 +24,15 @@ void fsai::mesh::VocalFoldGeometry::bind(fsai::common::Parameters& p)
 //-----------------------------------------------------------------------------
 void fsai::mesh::VocalFoldGeometry::validate() const
 {
-  for (auto [name, v] : {std::pair{"depth", depth}, {"height", height},
-                         {"length", length}, {"a", a}, {"b", b},
-                         {"t_medial", t_medial}, {"r_inf", r_inf},
-                         {"cover", cover}, {"h", h}})
+  for (auto [name, v] : {std::pair{"depth", depth},
+                         {"height", height},
+                         {"length", length},
+                         {"a", a},
+                         {"b", b},
+                         {"t_medial", t_medial},
+                         {"r_inf", r_inf},
+                         {"cover", cover},
+                         {"h", h}})
   {
     fsai::require_positive(std::string("--fold.") + name, v);
   }
@@ -143,9 +148,8 @@ fsai::mesh::cover_cells(const dolfinx::mesh::Mesh& mesh,
       const auto [ax, ay] = poly[i];
       const auto [bx, by] = poly[i + 1];
       const double ex = bx - ax, ey = by - ay;
-      const double t = std::clamp(((px - ax) * ex + (py - ay) * ey)
-                                      / (ex * ex + ey * ey),
-                                  0.0, 1.0);
+      const double t = std::clamp(
+          ((px - ax) * ex + (py - ay) * ey) / (ex * ex + ey * ey), 0.0, 1.0);
       const double dx = px - ax - t * ex, dy = py - ay - t * ey;
       d2 = std::min(d2, dx * dx + dy * dy);
     }

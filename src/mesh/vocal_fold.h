@@ -27,15 +27,15 @@ namespace fsai::mesh
 /// male membranous fold, 15–18 mm).
 struct VocalFoldGeometry
 {
-  double depth = 8.4e-3;     ///< lateral → medial extent [m]
-  double height = 10e-3;     ///< at the lateral wall [m]
-  double length = 17e-3;     ///< anterior → posterior [m]
-  double a = 2e-3;           ///< superior-medial corner, horizontal semi-axis
-  double b = 2e-3;           ///< superior-medial corner, vertical semi-axis
-  double t_medial = 1e-3;    ///< vertical medial surface
-  double r_inf = 1e-3;       ///< inferior-medial corner radius
-  double cover = 1e-3;       ///< cover thickness for two-layer folds [m]
-  double h = 1e-3;           ///< mesh size [m]
+  double depth = 8.4e-3;  ///< lateral → medial extent [m]
+  double height = 10e-3;  ///< at the lateral wall [m]
+  double length = 17e-3;  ///< anterior → posterior [m]
+  double a = 2e-3;        ///< superior-medial corner, horizontal semi-axis
+  double b = 2e-3;        ///< superior-medial corner, vertical semi-axis
+  double t_medial = 1e-3; ///< vertical medial surface
+  double r_inf = 1e-3;    ///< inferior-medial corner radius
+  double cover = 1e-3;    ///< cover thickness for two-layer folds [m]
+  double h = 1e-3;        ///< mesh size [m]
 
   void bind(fsai::common::Parameters& p);
   void validate() const;

@@ -1,0 +1,114 @@
+# Incompressible Navier–Stokes in ALE form with P1/P1 stabilisation
+# (shared/DESIGN.md E8–E11, E19, E20), triangles and tetrahedra.
+#
+# Strong form on the moving domain Ω_t, mesh velocity w:
+#   ρ (∂v/∂t|_A + ((v − w)·∇) v) − μ Δv + ∇p + σ_P χ (v − w) = 0,  ∇·v = 0
+# (the ALE time derivative at fixed reference points is the derivative of
+# the nodal values on the moving mesh; E8's conservative form differs from
+# this one by (∇·w) v, which the geometric conservation law makes vanish
+# for the discrete BDF on a mesh moved consistently).
+#
+# Time: BDF (E19) with coefficients a0, a1, a2 (already divided by Δt):
+#   ∂v/∂t ≈ a0 v + a1 v_n + a2 v_nn; BDF1 (1, −1, 0)/Δt, BDF2 (3/2, −2, 1/2)/Δt,
+#   steady problems a0 = a1 = a2 = 0.
+# Linearisation (E20): the convecting velocity b = v* − w with v* given by
+#   the caller (2v_n − v_nn: Oseen with extrapolation; the last iterate:
+#   Picard), so every solve is linear.
+# Galerkin weak form (gradient form of the viscous term, which gives the
+# boundary conditions of E11 as natural ones):
+#   ρ(a0 v + (∇v) b, φ) + μ(∇v, ∇φ) − (p, ∇·φ) + (∇·v, q) + σ_P(χ v, φ)
+#     = −ρ(a1 v_n + a2 v_nn, φ) + σ_P(χ w, φ)
+# Boundaries (ds ids bound at run time; zero unless facets are given):
+#   ds(1) inlet, E11a penalty form, ε [s/m]:
+#     + ∫ [ (ρ/ε)(v − v_in) + p_in n − ½ρ (b·n)⁻ v ]·φ
+#   ds(2) outlet, E11c directional do-nothing:
+#     + ∫ [ p_out n − ½ρ (b·n)⁻ v ]·φ
+#   The −½ρ(b·n)⁻ term, (x)⁻ = min(x, 0), cancels the energy that the
+#   convective term would bring in through backflow (Braack & Mucha 2014);
+#   with it ½∫(b·n)|v|² becomes ½∫(b·n)⁺|v|² ≥ 0.
+#   ε → 0: Dirichlet v = v_in; ε → ∞: pressure inlet p = p_in (E11a).
+# Stabilisation (E20), each term switched by a 0/1 constant:
+#   R_m = ρ(a0 v + a1 v_n + a2 v_nn + (∇v) b) + ∇p + σ_P χ (v − w)
+#     (−μΔv vanishes on P1)
+#   SUPG   + Σ_K τ_m (R_m, (∇φ) b)_K
+#   PSPG   + Σ_K (τ_m/ρ) (R_m, ∇q)_K
+#   div-div + Σ_K ρ τ_c (∇·v, ∇·φ)_K
+#   τ_m = [(2/Δt)² + (2|b|/h)² + (4ν/h²)²]^(−1/2), τ_c = h|b|/2 (Tezduyar
+#   1992; the Δt term is dropped for steady problems), h the cell diameter.
+import ufl
+from ufl import (FacetNormal, CellDiameter, conditional, div, dot, ds, dx,
+                 grad, inner, lt, sqrt, split)
+
+from fsai_ufl import dim, domain
+
+mesh = domain()
+cell = mesh.ufl_cell()
+P1v = ufl.VectorElement("Lagrange", cell, 1)
+P1 = ufl.FiniteElement("Lagrange", cell, 1)
+DG0 = ufl.FiniteElement("DG", cell, 0)
+W = ufl.FunctionSpace(mesh, ufl.MixedElement([P1v, P1]))
+V = ufl.FunctionSpace(mesh, P1v)
+
+(phi, q) = ufl.TestFunctions(W)
+up = ufl.Coefficient(W)        # a solution (residual, forces, flux)
+v_n = ufl.Coefficient(V)
+v_nn = ufl.Coefficient(V)
+v_star = ufl.Coefficient(V)    # convecting flow velocity (extrapolated/iterate)
+w = ufl.Coefficient(V)         # mesh velocity
+v_in = ufl.Coefficient(V)      # inlet velocity (E11a)
+chi = ufl.Coefficient(ufl.FunctionSpace(mesh, DG0))  # porous indicator
+
+rho = ufl.Constant(mesh)
+mu = ufl.Constant(mesh)
+a0 = ufl.Constant(mesh)
+a1 = ufl.Constant(mesh)
+a2 = ufl.Constant(mesh)
+inv_dt = ufl.Constant(mesh)    # 1/Δt in τ_m (0 for steady problems)
+supg = ufl.Constant(mesh)
+pspg = ufl.Constant(mesh)
+graddiv = ufl.Constant(mesh)
+sigma_p = ufl.Constant(mesh)   # inverse permeability σ_P [kg/(m³ s)]
+inv_eps = ufl.Constant(mesh)   # 1/ε of the inlet penalty [m/s]
+p_in = ufl.Constant(mesh)
+p_out = ufl.Constant(mesh)
+
+n = FacetNormal(mesh)
+h = CellDiameter(mesh)
+b = v_star - w
+bn = dot(b, n)
+bn_minus = conditional(lt(bn, 0), bn, 0)
+nu = mu / rho
+bnorm = sqrt(dot(b, b) + 1e-30)
+tau_m = ((2 * inv_dt) ** 2 + (2 * bnorm / h) ** 2 + (4 * nu / h**2) ** 2) ** -0.5
+tau_c = 0.5 * h * bnorm
+
+
+def residual(v, p):
+    """Full weak residual F((v, p); (φ, q)); linear in (v, p) for fixed b"""
+    R_m = (rho * (a0 * v + a1 * v_n + a2 * v_nn + grad(v) * b) + grad(p)
+           + sigma_p * chi * (v - w))
+    F = (rho * inner(a0 * v + a1 * v_n + a2 * v_nn + grad(v) * b, phi) * dx
+         + mu * inner(grad(v), grad(phi)) * dx
+         - p * div(phi) * dx + div(v) * q * dx
+         + sigma_p * chi * inner(v - w, phi) * dx
+         + supg * tau_m * inner(R_m, grad(phi) * b) * dx
+         + pspg * tau_m / rho * inner(R_m, grad(q)) * dx
+         + graddiv * rho * tau_c * div(v) * div(phi) * dx
+         + inner(rho * inv_eps * (v - v_in) + p_in * n
+                 - 0.5 * rho * bn_minus * v, phi) * ds(1)
+         + inner(p_out * n - 0.5 * rho * bn_minus * v, phi) * ds(2))
+    return F
+
+
+(v_tr, p_tr) = ufl.TrialFunctions(W)
+a, L = ufl.system(residual(v_tr, p_tr))
+
+# Residual of a given solution: forces on a boundary are its entries at
+# that boundary's velocity dofs (E12, consistent traction)
+(v_h, p_h) = split(up)
+F_res = residual(v_h, p_h)
+
+# Flow rate through the facets bound to ds(1)
+flux = dot(v_h, n) * ds(1)
+
+forms = [a, L, F_res, flux]

@@ -1,0 +1,396 @@
+// Copyright (C) 2026 fsai developers
+#include "FluidSolver.h"
+#include "../common/Parameters.h"
+#include "../common/Runtime.h"
+#include "../common/errors.h"
+#include "../common/timer.h"
+#include <cmath>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/mesh/utils.h>
+#include <fmt/format.h>
+#include <fsai_forms/fluid.h>
+#include <numeric>
+
+using namespace dolfinx;
+namespace fluid_forms = fsai::forms::fluid;
+
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
+{
+  p.add("fluid.rho", rho, "density [kg/m^3]");
+  p.add("fluid.mu", mu, "dynamic viscosity [Pa s]");
+  p.add("fluid.supg", supg, "SUPG stabilisation");
+  p.add("fluid.pspg", pspg, "PSPG stabilisation");
+  p.add("fluid.graddiv", graddiv, "div-div stabilisation");
+  p.add("fluid.picard", picard, "linear solves per time step (1: Oseen)");
+  p.add("fluid.picard_tol", picard_tol, "Picard tolerance on |dv|/|v|");
+  p.add("fluid.sigma_p", sigma_p, "porous inverse permeability [kg/(m^3 s)]");
+  p.add("fluid.inlet_eps", inlet_eps, "inlet penalty epsilon [s/m]");
+  p.add("fluid.p_in", p_in, "inlet reference pressure [Pa]");
+  p.add("fluid.p_out", p_out, "outlet reference pressure [Pa]");
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidParameters::validate() const
+{
+  fsai::require_positive("--fluid.rho", rho);
+  fsai::require_positive("--fluid.mu", mu);
+  fsai::require(picard >= 1 and picard <= 100, "--fluid.picard", "in [1, 100]",
+                picard);
+  fsai::require_positive("--fluid.picard_tol", picard_tol);
+  fsai::require(sigma_p >= 0, "--fluid.sigma_p", ">= 0", sigma_p);
+  fsai::require(inlet_eps >= 0, "--fluid.inlet_eps", ">= 0", inlet_eps);
+}
+//-----------------------------------------------------------------------------
+fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
+                                      const FluidBoundaries& bnd,
+                                      const FluidParameters& p, double dt)
+    : _par(p), _dt(dt), _A(nullptr, false), _solver(mesh->comm())
+{
+  common::ScopedTimer timer("fluid: setup");
+  p.validate();
+  fsai::require_positive("fluid: time step", dt);
+  const int tdim = mesh->topology().dim();
+  auto mesh_nc = std::const_pointer_cast<mesh::Mesh>(mesh);
+  _W = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+      fluid_forms::functionspace_a(tdim, 1), "v_0", mesh_nc));
+  {
+    auto [V, map] = _W->sub({0})->collapse();
+    _V = std::make_shared<fem::FunctionSpace>(std::move(V));
+    _map_v = std::move(map);
+    auto [Q, mapq] = _W->sub({1})->collapse();
+    _Q = std::make_shared<fem::FunctionSpace>(std::move(Q));
+    _map_p = std::move(mapq);
+  }
+  _DG0 = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+      fluid_forms::functionspace_a(tdim, 1), "chi", mesh_nc));
+  auto fn = [](auto V, const std::string& name)
+  {
+    auto f = std::make_shared<fem::Function<double>>(V);
+    f->name = name;
+    f->x()->set(0.0);
+    return f;
+  };
+  _up = fn(_W, "up");
+  _v = fn(_V, "velocity");
+  _p = fn(_Q, "pressure");
+  _v_n = fn(_V, "v_n");
+  _v_nn = fn(_V, "v_nn");
+  _v_star = fn(_V, "v_star");
+  _w = fn(_V, "mesh_velocity");
+  _v_in = fn(_V, "inlet_velocity");
+  _v_wall = fn(_V, "wall_velocity");
+  _chi = fn(_DG0, "porous");
+
+  auto constant = [&](double v)
+  {
+    _constants.push_back(std::make_shared<fem::Constant<double>>(v));
+    return _constants.back();
+  };
+  _a0 = constant(0.0);
+  _a1 = constant(0.0);
+  _a2 = constant(0.0);
+  _inv_dt = constant(1.0 / dt);
+  fsai::require(bnd.inlet_penalty.empty() or p.inlet_eps > 0,
+                "--fluid.inlet_eps", "> 0 for a penalty inlet", p.inlet_eps);
+  std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c = {
+      {"rho", constant(p.rho)},
+      {"mu", constant(p.mu)},
+      {"a0", _a0},
+      {"a1", _a1},
+      {"a2", _a2},
+      {"inv_dt", _inv_dt},
+      {"supg", constant(p.supg ? 1.0 : 0.0)},
+      {"pspg", constant(p.pspg ? 1.0 : 0.0)},
+      {"graddiv", constant(p.graddiv ? 1.0 : 0.0)},
+      {"sigma_p", constant(p.sigma_p)},
+      {"inv_eps", constant(p.inlet_eps > 0 ? 1.0 / p.inlet_eps : 0.0)},
+      {"p_in", constant(p.p_in)},
+      {"p_out", constant(p.p_out)}};
+  std::map<std::string, std::shared_ptr<const fem::Function<double>>> coeffs
+      = {{"up", _up},       {"v_n", _v_n}, {"v_nn", _v_nn},
+         {"v_star", _v_star}, {"w", _w},     {"v_in", _v_in},
+         {"chi", _chi}};
+
+  // Natural boundaries: ds(1) penalty inlet, ds(2) outlet
+  const int fdim = tdim - 1;
+  mesh_nc->topology_mutable().create_connectivity(fdim, tdim);
+  const std::int32_t nf = mesh->topology().index_map(fdim)->size_local();
+  std::vector<std::pair<std::int32_t, int>> tagged;
+  for (std::int32_t f : bnd.inlet_penalty)
+    if (f < nf)
+      tagged.push_back({f, 1});
+  for (std::int32_t f : bnd.outlet)
+    if (f < nf)
+      tagged.push_back({f, 2});
+  std::sort(tagged.begin(), tagged.end());
+  std::vector<std::int32_t> idx, val;
+  for (auto [f, v] : tagged)
+    idx.push_back(f), val.push_back(v);
+  _tags.push_back(std::make_shared<mesh::MeshTags<std::int32_t>>(
+      mesh, fdim, std::move(idx), std::move(val)));
+  std::map<fem::IntegralType, const mesh::MeshTags<int>*> sd
+      = {{fem::IntegralType::exterior_facet, _tags[0].get()}};
+
+  // Dirichlet: walls (v = wall velocity), Dirichlet inlet, symmetry v_y = 0
+  auto W0 = _W->sub({0});
+  auto vec_bc = [&](const std::vector<std::int32_t>& facets,
+                    std::shared_ptr<fem::Function<double>> g)
+  {
+    auto dofs = fem::locate_dofs_topological({*W0, *_V}, fdim, facets);
+    _bcs.push_back(
+        std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W0));
+  };
+  vec_bc(bnd.walls, _v_wall);
+  vec_bc(bnd.inlet_dirichlet, _v_in);
+  {
+    auto W01 = _W->sub({0})->sub({1});
+    auto dofs = fem::locate_dofs_topological(*W01, fdim, bnd.symmetry);
+    _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
+        std::make_shared<fem::Constant<double>>(0.0), std::move(dofs), W01));
+  }
+
+  _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      fluid_forms::a(tdim, 1), {_W, _W}, coeffs, c, sd));
+  _L = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      fluid_forms::L(tdim, 1), {_W}, coeffs, c, sd));
+  _F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      fluid_forms::F_res(tdim, 1), {_W}, coeffs, c, sd));
+  _A = la::petsc::Matrix(fem::petsc::create_matrix(*_a), false);
+
+  common::set_option_default("fluid_ksp_type", "preonly");
+  common::set_option_default("fluid_pc_type", "lu");
+  common::set_option_default("fluid_pc_factor_mat_solver_type", "mumps");
+  _solver.set_options_prefix("fluid_");
+  _solver.set_from_options();
+}
+//-----------------------------------------------------------------------------
+std::int64_t fsai::fluid::FluidSolver::dofs() const
+{
+  return _W->dofmap()->index_map->size_global();
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::split()
+{
+  auto up = _up->x()->array();
+  auto v = _v->x()->mutable_array();
+  auto p = _p->x()->mutable_array();
+  for (std::size_t i = 0; i < _map_v.size(); ++i)
+    v[i] = up[_map_v[i]];
+  for (std::size_t i = 0; i < _map_p.size(); ++i)
+    p[i] = up[_map_p[i]];
+}
+//-----------------------------------------------------------------------------
+int fsai::fluid::FluidSolver::solve()
+{
+  {
+    common::ScopedTimer t("fluid: assemble");
+    MatZeroEntries(_A.mat());
+    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(_A.mat(), ADD_VALUES),
+                         *_a, _bcs);
+    MatAssemblyBegin(_A.mat(), MAT_FLUSH_ASSEMBLY);
+    MatAssemblyEnd(_A.mat(), MAT_FLUSH_ASSEMBLY);
+    fem::set_diagonal<double>(la::petsc::Matrix::set_fn(_A.mat(), INSERT_VALUES),
+                              *_W, _bcs);
+    MatAssemblyBegin(_A.mat(), MAT_FINAL_ASSEMBLY);
+    MatAssemblyEnd(_A.mat(), MAT_FINAL_ASSEMBLY);
+  }
+  la::Vector<double> b(_W->dofmap()->index_map, 1);
+  {
+    common::ScopedTimer t("fluid: assemble");
+    b.set(0.0);
+    fem::assemble_vector(b.mutable_array(), *_L);
+    fem::apply_lifting<double>(
+        b.mutable_array(), std::vector<std::shared_ptr<const fem::Form<double>>>{_a},
+        std::vector<decltype(_bcs)>{_bcs}, std::vector<std::span<const double>>{},
+        1.0);
+    b.scatter_rev(std::plus<double>());
+    fem::set_bc<double>(b.mutable_array(), _bcs);
+  }
+  {
+    common::ScopedTimer t("fluid: solve");
+    _solver.set_operator(_A.mat());
+    la::petsc::Vector x(la::petsc::create_vector_wrap(*_up->x()), false);
+    la::petsc::Vector bb(la::petsc::create_vector_wrap(b), false);
+    _solver.solve(x.vec(), bb.vec());
+    KSPConvergedReason reason;
+    KSPGetConvergedReason(_solver.ksp(), &reason);
+    if (reason < 0)
+    {
+      throw std::runtime_error(fmt::format(
+          "fluid: linear solve failed at t = {:.6g} s (KSPConvergedReason {})",
+          _t, int(reason)));
+    }
+    _up->x()->scatter_fwd();
+  }
+  split();
+  const double nv = la::norm(*_v->x());
+  if (!std::isfinite(nv))
+    throw std::runtime_error(
+        fmt::format("fluid: velocity is not finite at t = {:.6g} s", _t));
+  return 1;
+}
+//-----------------------------------------------------------------------------
+int fsai::fluid::FluidSolver::step()
+{
+  common::ScopedTimer timer("fluid: step");
+  const double dt = _dt;
+  // E19: BDF1 for the first step, then BDF2
+  if (_steps == 0)
+    _a0->value[0] = 1 / dt, _a1->value[0] = -1 / dt, _a2->value[0] = 0;
+  else
+    _a0->value[0] = 1.5 / dt, _a1->value[0] = -2 / dt, _a2->value[0] = 0.5 / dt;
+  _inv_dt->value[0] = 1 / dt;
+  // Oseen: convecting velocity extrapolated, 2 v_n − v_nn (v_n at start)
+  {
+    auto vs = _v_star->x()->mutable_array();
+    auto vn = _v_n->x()->array(), vnn = _v_nn->x()->array();
+    for (std::size_t i = 0; i < vs.size(); ++i)
+      vs[i] = _steps == 0 ? vn[i] : 2 * vn[i] - vnn[i];
+  }
+  _t += dt;
+  int solves = 0;
+  for (int k = 0; k < _par.picard; ++k)
+  {
+    std::vector<double> prev(_v->x()->array().begin(), _v->x()->array().end());
+    solves += solve();
+    if (_par.picard == 1)
+      break;
+    // Picard: convect with the new iterate
+    auto v = _v->x()->array();
+    double d2 = 0, v2 = 0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      d2 += (v[i] - prev[i]) * (v[i] - prev[i]), v2 += v[i] * v[i];
+    std::array<double, 2> loc{d2, v2}, glob;
+    MPI_Allreduce(loc.data(), glob.data(), 2, MPI_DOUBLE, MPI_SUM,
+                  _W->mesh()->comm());
+    std::copy(v.begin(), v.end(), _v_star->x()->mutable_array().begin());
+    if (std::sqrt(glob[0]) <= _par.picard_tol * std::sqrt(glob[1]))
+      break;
+  }
+  // Shift the history
+  std::copy(_v_n->x()->array().begin(), _v_n->x()->array().end(),
+            _v_nn->x()->mutable_array().begin());
+  std::copy(_v->x()->array().begin(), _v->x()->array().end(),
+            _v_n->x()->mutable_array().begin());
+  ++_steps;
+  return solves;
+}
+//-----------------------------------------------------------------------------
+int fsai::fluid::FluidSolver::solve_steady(int max_iterations)
+{
+  common::ScopedTimer timer("fluid: steady");
+  _a0->value[0] = _a1->value[0] = _a2->value[0] = 0.0;
+  _inv_dt->value[0] = 0.0;
+  for (int k = 1; k <= max_iterations; ++k)
+  {
+    std::copy(_v->x()->array().begin(), _v->x()->array().end(),
+              _v_star->x()->mutable_array().begin());
+    solve();
+    auto v = _v->x()->array(), vs = _v_star->x()->array();
+    double d2 = 0, v2 = 0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      d2 += (v[i] - vs[i]) * (v[i] - vs[i]), v2 += v[i] * v[i];
+    std::array<double, 2> loc{d2, v2}, glob;
+    MPI_Allreduce(loc.data(), glob.data(), 2, MPI_DOUBLE, MPI_SUM,
+                  _W->mesh()->comm());
+    if (std::sqrt(glob[0]) <= _par.picard_tol * std::sqrt(glob[1]))
+    {
+      std::copy(v.begin(), v.end(), _v_n->x()->mutable_array().begin());
+      std::copy(v.begin(), v.end(), _v_nn->x()->mutable_array().begin());
+      return k;
+    }
+  }
+  throw std::runtime_error(fmt::format(
+      "fluid: steady Picard iteration did not converge in {} iterations",
+      max_iterations));
+}
+//-----------------------------------------------------------------------------
+std::array<double, 3>
+fsai::fluid::FluidSolver::force(std::span<const std::int32_t> facets)
+{
+  common::ScopedTimer timer("fluid: force");
+  la::Vector<double> r(_W->dofmap()->index_map, 1);
+  r.set(0.0);
+  fem::assemble_vector(r.mutable_array(), *_F);
+  r.scatter_rev(std::plus<double>());
+  const int tdim = _W->mesh()->topology().dim();
+  const std::int32_t owned = _W->dofmap()->index_map->size_local();
+  std::array<double, 3> local{0, 0, 0}, global{0, 0, 0};
+  for (int i = 0; i < tdim; ++i)
+  {
+    // NOTE(DOLFINx 0.5.2): W->sub({0, i}) is not the i-th component of
+    // sub-space 0; chain sub() calls
+    auto dofs = fem::locate_dofs_topological(*_W->sub({0})->sub({i}), tdim - 1,
+                                             facets);
+    for (std::int32_t d : dofs)
+      if (d < owned)
+        local[i] += r.array()[d];
+  }
+  MPI_Allreduce(local.data(), global.data(), 3, MPI_DOUBLE, MPI_SUM,
+                _W->mesh()->comm());
+  // The residual at a wall dof is the traction the wall exerts on the
+  // fluid there (the reaction that keeps v = g); the fluid pushes the wall
+  // with the opposite force
+  return {-global[0], -global[1], -global[2]};
+}
+//-----------------------------------------------------------------------------
+double fsai::fluid::FluidSolver::flow_rate(std::span<const std::int32_t> facets)
+{
+  const int tdim = _W->mesh()->topology().dim();
+  auto mesh = _W->mesh();
+  const std::int32_t nf = mesh->topology().index_map(tdim - 1)->size_local();
+  std::vector<std::int32_t> f;
+  for (std::int32_t x : facets)
+    if (x < nf)
+      f.push_back(x);
+  std::sort(f.begin(), f.end());
+  std::vector<std::int32_t> ones(f.size(), 1);
+  mesh::MeshTags<std::int32_t> tags(mesh, tdim - 1, std::move(f),
+                                    std::move(ones));
+  auto Q = fem::create_form<double>(
+      fluid_forms::flux(tdim, 1), {},
+      std::map<std::string, std::shared_ptr<const fem::Function<double>>>{
+          {"up", _up}},
+      std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{},
+      {{fem::IntegralType::exterior_facet, &tags}}, mesh);
+  double local = fem::assemble_scalar(Q), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
+  return global;
+}
+//-----------------------------------------------------------------------------
+std::array<double, 2> fsai::fluid::FluidSolver::cfl_and_cell_reynolds() const
+{
+  auto mesh = _W->mesh();
+  const int tdim = mesh->topology().dim();
+  const std::int32_t nc = mesh->topology().index_map(tdim)->size_local();
+  std::vector<std::int32_t> cells(nc);
+  std::iota(cells.begin(), cells.end(), 0);
+  std::vector<double> h = mesh::h(*mesh, cells, tdim);
+  auto dofmap = _V->dofmap();
+  auto v = _v->x()->array(), w = _w->x()->array();
+  const int bs = dofmap->bs();
+  std::array<double, 2> local{0, 0}, global;
+  for (std::int32_t c = 0; c < nc; ++c)
+  {
+    double vmax = 0, rmax = 0;
+    for (std::int32_t d : dofmap->cell_dofs(c))
+    {
+      double s2 = 0, r2 = 0;
+      for (int k = 0; k < bs; ++k)
+      {
+        s2 += v[d * bs + k] * v[d * bs + k];
+        r2 += (v[d * bs + k] - w[d * bs + k]) * (v[d * bs + k] - w[d * bs + k]);
+      }
+      vmax = std::max(vmax, std::sqrt(s2));
+      rmax = std::max(rmax, std::sqrt(r2));
+    }
+    local[0] = std::max(local[0], rmax * _dt / h[c]);
+    local[1] = std::max(local[1], vmax * h[c] * _par.rho / _par.mu);
+  }
+  MPI_Allreduce(local.data(), global.data(), 2, MPI_DOUBLE, MPI_MAX,
+                mesh->comm());
+  return global;
+}
+//-----------------------------------------------------------------------------

@@ -1,0 +1,120 @@
+// Copyright (C) 2026 fsai developers
+//
+// Incompressible Navier–Stokes, stabilised P1/P1, BDF1/BDF2 on a (possibly
+// moving) mesh: shared/DESIGN.md E8–E11, E19, E20; forms/fluid.py. Each
+// solve is linear (Oseen: the convecting velocity is extrapolated, or
+// Picard: iterated). PETSc options prefix "fluid_" (default: MUMPS LU).
+#pragma once
+
+#include <array>
+#include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/Form.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/la/petsc.h>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fsai::common
+{
+class Parameters;
+}
+
+namespace fsai::fluid
+{
+/// Flow parameters ([fluid] section)
+struct FluidParameters
+{
+  double rho = 1.2;      ///< density [kg/m³]
+  double mu = 1.8e-5;    ///< dynamic viscosity [Pa s]
+  bool supg = true;
+  bool pspg = true;
+  bool graddiv = true;
+  int picard = 1;        ///< linear solves per time step (1: Oseen)
+  double picard_tol = 1e-6; ///< on |Δv|/|v| when picard > 1 or steady
+  double sigma_p = 0.0;  ///< porous inverse permeability [kg/(m³ s)]
+  double inlet_eps = 0.0; ///< inlet penalty ε [s/m] (0: not used)
+  double p_in = 0.0;     ///< inlet reference pressure [Pa]
+  double p_out = 0.0;    ///< outlet reference pressure [Pa]
+
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+};
+
+/// Boundary facets by role (local indices)
+struct FluidBoundaries
+{
+  std::vector<std::int32_t> inlet_dirichlet; ///< v = inlet_velocity()
+  std::vector<std::int32_t> inlet_penalty;   ///< E11a (needs inlet_eps > 0)
+  std::vector<std::int32_t> outlet;          ///< E11c directional do-nothing
+  std::vector<std::int32_t> walls;           ///< v = wall_velocity() (0 or w_D)
+  std::vector<std::int32_t> symmetry;        ///< v_y = 0 (axis y = const)
+};
+
+class FluidSolver
+{
+public:
+  FluidSolver(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+              const FluidBoundaries& boundaries, const FluidParameters& p,
+              double dt);
+
+  /// Inlet velocity profile (Dirichlet or penalty target), set before a
+  /// step for the new time
+  dolfinx::fem::Function<double>& inlet_velocity() { return *_v_in; }
+  /// Velocity imposed on the walls (zero; the mesh velocity on moving walls)
+  dolfinx::fem::Function<double>& wall_velocity() { return *_v_wall; }
+  /// Mesh velocity w (ALE)
+  dolfinx::fem::Function<double>& mesh_velocity() { return *_w; }
+  /// Porous indicator χ (DG0)
+  dolfinx::fem::Function<double>& porous_indicator() { return *_chi; }
+
+  /// One BDF step t → t + Δt (BDF1 for the first); returns linear solves
+  int step();
+  /// Steady state by Picard iteration from the current velocity; returns
+  /// the iterations
+  int solve_steady(int max_iterations = 50);
+
+  /// Force exerted by the fluid on the boundary `facets` (consistent:
+  /// residual of the weak form at the velocity dofs there) [N per unit
+  /// depth in 2D]
+  std::array<double, 3> force(std::span<const std::int32_t> facets);
+  /// Flow rate ∫ v·n ds over `facets` (outward n)
+  double flow_rate(std::span<const std::int32_t> facets);
+
+  std::shared_ptr<dolfinx::fem::Function<double>> velocity() const
+  {
+    return _v;
+  }
+  std::shared_ptr<dolfinx::fem::Function<double>> pressure() const
+  {
+    return _p;
+  }
+  double time() const { return _t; }
+  void set_time(double t) { _t = t; }
+  double dt() const { return _dt; }
+  std::int64_t dofs() const;
+  /// Largest CFL number |v − w| Δt / h and cell Reynolds number |v| h / ν
+  std::array<double, 2> cfl_and_cell_reynolds() const;
+
+private:
+  int solve(); // assemble and solve once with the current b; updates _up
+  void split();
+
+  FluidParameters _par;
+  double _dt, _t = 0.0;
+  int _steps = 0;
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> _W, _V, _Q, _DG0;
+  std::vector<std::int32_t> _map_v, _map_p; // collapsed → mixed dofs
+  std::shared_ptr<dolfinx::fem::Function<double>> _up, _v, _p, _v_n, _v_nn,
+      _v_star, _w, _v_in, _v_wall, _chi;
+  std::shared_ptr<dolfinx::fem::Constant<double>> _a0, _a1, _a2, _inv_dt;
+  std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
+  std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
+  std::vector<std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>>> _tags;
+  std::shared_ptr<dolfinx::fem::Form<double>> _a, _L, _F;
+  dolfinx::la::petsc::Matrix _A;
+  dolfinx::la::petsc::KrylovSolver _solver;
+};
+} // namespace fsai::fluid
