@@ -37,9 +37,9 @@ struct CylinderParameters
 {
   std::string output = "results/fsai_cylinder";
   std::string dfg_case = "2D-1";
-  int level = 1;       // h = 0.04 / 2^level, cylinder h / 8
-  double dt = 0.005;   // 2D-2 time step [s]
-  double t_end = 8.0;  // 2D-2 simulated time [s]
+  int level = 1;        // h = 0.04 / 2^level, cylinder h / 8
+  double dt = 0.005;    // 2D-2 time step [s]
+  double t_end = 8.0;   // 2D-2 simulated time [s]
   double t_stats = 4.0; // 2D-2: statistics from this time on
   int write_every = 20;
   bool check_result = false;
@@ -75,7 +75,7 @@ int main(int argc, char* argv[])
       {
         CylinderParameters cp;
         fsai::fluid::FluidParameters fp;
-        fp.rho = 1.0;   // DFG: ρ = 1, ν = 1e-3
+        fp.rho = 1.0; // DFG: ρ = 1, ν = 1e-3
         fp.mu = 1e-3;
         fsai::common::Parameters params(rt.program(),
                                         "DFG flow around a cylinder");
@@ -190,20 +190,21 @@ int main(int argc, char* argv[])
             if (cls[i - 1] < 0 and cls[i] >= 0)
               cross.push_back(ts[i - 1]
                               + cp.dt * -cls[i - 1] / (cls[i] - cls[i - 1]));
-          const double f = cross.size() >= 2 ? (cross.size() - 1)
-                                                   / (cross.back() - cross.front())
-                                             : NAN;
+          const double f
+              = cross.size() >= 2
+                    ? (cross.size() - 1) / (cross.back() - cross.front())
+                    : NAN;
           const double St = f * D / Umean;
           const double wps = std::chrono::duration<double>(
                                  std::chrono::steady_clock::now() - wall0)
                                  .count()
                              / cp.t_end;
-          fsai::log::info("2D-2: c_D,max = {:.4f} (ref 3.2274, {:+.2f}%), c_L,max "
-                          "= {:.4f} (ref 0.9866, {:+.2f}%), St = {:.4f} (ref "
-                          "0.3018, {:+.2f}%), {:.1f} s wall per simulated s",
-                          cd_max, 100 * (cd_max / 3.2274 - 1), cl_max,
-                          100 * (cl_max / 0.9866 - 1), St,
-                          100 * (St / 0.30184 - 1), wps);
+          fsai::log::info(
+              "2D-2: c_D,max = {:.4f} (ref 3.2274, {:+.2f}%), c_L,max "
+              "= {:.4f} (ref 0.9866, {:+.2f}%), St = {:.4f} (ref "
+              "0.3018, {:+.2f}%), {:.1f} s wall per simulated s",
+              cd_max, 100 * (cd_max / 3.2274 - 1), cl_max,
+              100 * (cl_max / 0.9866 - 1), St, 100 * (St / 0.30184 - 1), wps);
           summary.set("cd_max", cd_max);
           summary.set("cl_max", cl_max);
           summary.set("strouhal", St);

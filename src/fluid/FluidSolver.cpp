@@ -94,24 +94,23 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   _inv_dt = constant(1.0 / dt);
   fsai::require(bnd.inlet_penalty.empty() or p.inlet_eps > 0,
                 "--fluid.inlet_eps", "> 0 for a penalty inlet", p.inlet_eps);
-  std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c = {
-      {"rho", constant(p.rho)},
-      {"mu", constant(p.mu)},
-      {"a0", _a0},
-      {"a1", _a1},
-      {"a2", _a2},
-      {"inv_dt", _inv_dt},
-      {"supg", constant(p.supg ? 1.0 : 0.0)},
-      {"pspg", constant(p.pspg ? 1.0 : 0.0)},
-      {"graddiv", constant(p.graddiv ? 1.0 : 0.0)},
-      {"sigma_p", constant(p.sigma_p)},
-      {"inv_eps", constant(p.inlet_eps > 0 ? 1.0 / p.inlet_eps : 0.0)},
-      {"p_in", constant(p.p_in)},
-      {"p_out", constant(p.p_out)}};
+  std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
+      = {{"rho", constant(p.rho)},
+         {"mu", constant(p.mu)},
+         {"a0", _a0},
+         {"a1", _a1},
+         {"a2", _a2},
+         {"inv_dt", _inv_dt},
+         {"supg", constant(p.supg ? 1.0 : 0.0)},
+         {"pspg", constant(p.pspg ? 1.0 : 0.0)},
+         {"graddiv", constant(p.graddiv ? 1.0 : 0.0)},
+         {"sigma_p", constant(p.sigma_p)},
+         {"inv_eps", constant(p.inlet_eps > 0 ? 1.0 / p.inlet_eps : 0.0)},
+         {"p_in", constant(p.p_in)},
+         {"p_out", constant(p.p_out)}};
   std::map<std::string, std::shared_ptr<const fem::Function<double>>> coeffs
-      = {{"up", _up},       {"v_n", _v_n}, {"v_nn", _v_nn},
-         {"v_star", _v_star}, {"w", _w},     {"v_in", _v_in},
-         {"chi", _chi}};
+      = {{"up", _up}, {"v_n", _v_n},   {"v_nn", _v_nn}, {"v_star", _v_star},
+         {"w", _w},   {"v_in", _v_in}, {"chi", _chi}};
 
   // Natural boundaries: ds(1) penalty inlet, ds(2) outlet
   const int fdim = tdim - 1;
@@ -153,8 +152,8 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
 
   _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       fluid_forms::a(tdim, 1), {_W, _W}, coeffs, c, sd));
-  _L = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      fluid_forms::L(tdim, 1), {_W}, coeffs, c, sd));
+  _L = std::make_shared<fem::Form<double>>(
+      fem::create_form<double>(fluid_forms::L(tdim, 1), {_W}, coeffs, c, sd));
   _F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       fluid_forms::F_res(tdim, 1), {_W}, coeffs, c, sd));
   _A = la::petsc::Matrix(fem::petsc::create_matrix(*_a), false);
@@ -191,8 +190,8 @@ int fsai::fluid::FluidSolver::solve()
                          *_a, _bcs);
     MatAssemblyBegin(_A.mat(), MAT_FLUSH_ASSEMBLY);
     MatAssemblyEnd(_A.mat(), MAT_FLUSH_ASSEMBLY);
-    fem::set_diagonal<double>(la::petsc::Matrix::set_fn(_A.mat(), INSERT_VALUES),
-                              *_W, _bcs);
+    fem::set_diagonal<double>(
+        la::petsc::Matrix::set_fn(_A.mat(), INSERT_VALUES), *_W, _bcs);
     MatAssemblyBegin(_A.mat(), MAT_FINAL_ASSEMBLY);
     MatAssemblyEnd(_A.mat(), MAT_FINAL_ASSEMBLY);
   }
@@ -202,9 +201,10 @@ int fsai::fluid::FluidSolver::solve()
     b.set(0.0);
     fem::assemble_vector(b.mutable_array(), *_L);
     fem::apply_lifting<double>(
-        b.mutable_array(), std::vector<std::shared_ptr<const fem::Form<double>>>{_a},
-        std::vector<decltype(_bcs)>{_bcs}, std::vector<std::span<const double>>{},
-        1.0);
+        b.mutable_array(),
+        std::vector<std::shared_ptr<const fem::Form<double>>>{_a},
+        std::vector<decltype(_bcs)>{_bcs},
+        std::vector<std::span<const double>>{}, 1.0);
     b.scatter_rev(std::plus<double>());
     fem::set_bc<double>(b.mutable_array(), _bcs);
   }

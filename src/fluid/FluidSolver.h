@@ -27,17 +27,17 @@ namespace fsai::fluid
 /// Flow parameters ([fluid] section)
 struct FluidParameters
 {
-  double rho = 1.2;      ///< density [kg/m³]
-  double mu = 1.8e-5;    ///< dynamic viscosity [Pa s]
+  double rho = 1.2;   ///< density [kg/m³]
+  double mu = 1.8e-5; ///< dynamic viscosity [Pa s]
   bool supg = true;
   bool pspg = true;
   bool graddiv = true;
-  int picard = 1;        ///< linear solves per time step (1: Oseen)
+  int picard = 1;           ///< linear solves per time step (1: Oseen)
   double picard_tol = 1e-6; ///< on |Δv|/|v| when picard > 1 or steady
-  double sigma_p = 0.0;  ///< porous inverse permeability [kg/(m³ s)]
-  double inlet_eps = 0.0; ///< inlet penalty ε [s/m] (0: not used)
-  double p_in = 0.0;     ///< inlet reference pressure [Pa]
-  double p_out = 0.0;    ///< outlet reference pressure [Pa]
+  double sigma_p = 0.0;     ///< porous inverse permeability [kg/(m³ s)]
+  double inlet_eps = 0.0;   ///< inlet penalty ε [s/m] (0: not used)
+  double p_in = 0.0;        ///< inlet reference pressure [Pa]
+  double p_out = 0.0;       ///< outlet reference pressure [Pa]
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
