@@ -27,10 +27,10 @@ Channel channel(double L, double H, std::size_t nx, std::size_t ny)
   c.mesh->topology_mutable().create_connectivity(1, 2);
   auto at = [&](int axis, double v)
   {
-    return locate_entities_boundary(
-        *c.mesh, 1,
-        [=](auto& x) -> xt::xtensor<bool, 1>
-        { return xt::isclose(xt::row(x, axis), v); });
+    return locate_entities_boundary(*c.mesh, 1,
+                                    [=](auto& x) -> xt::xtensor<bool, 1> {
+                                      return xt::isclose(xt::row(x, axis), v);
+                                    });
   };
   c.inlet = at(0, 0.0);
   c.outlet = at(0, L);
