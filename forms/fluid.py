@@ -1,8 +1,8 @@
 # Incompressible Navier–Stokes in ALE form with P1/P1 stabilisation
 # (shared/DESIGN.md E8–E11, E19, E20), triangles and tetrahedra.
 #
-# Strong form on the moving domain Ω_t, mesh velocity w:
-#   ρ (∂v/∂t|_A + ((v − w)·∇) v) − μ Δv + ∇p + σ_P χ (v − w) = 0,  ∇·v = 0
+# Strong form on the moving domain Ω_t, mesh velocity w, body force f:
+#   ρ (∂v/∂t|_A + ((v − w)·∇) v) − μ Δv + ∇p + σ_P χ (v − w) = ρ f,  ∇·v = 0
 # (the ALE time derivative at fixed reference points is the derivative of
 # the nodal values on the moving mesh; E8's conservative form differs from
 # this one by (∇·w) v, which the geometric conservation law makes vanish
@@ -17,7 +17,7 @@
 # Galerkin weak form (gradient form of the viscous term, which gives the
 # boundary conditions of E11 as natural ones):
 #   ρ(a0 v + (∇v) b, φ) + μ(∇v, ∇φ) − (p, ∇·φ) + (∇·v, q) + σ_P(χ v, φ)
-#     = −ρ(a1 v_n + a2 v_nn, φ) + σ_P(χ w, φ)
+#     = −ρ(a1 v_n + a2 v_nn, φ) + σ_P(χ w, φ) + ρ(f, φ)
 # Boundaries (ds ids bound at run time; zero unless facets are given):
 #   ds(1) inlet, E11a penalty form, ε [s/m]:
 #     + ∫ [ (ρ/ε)(v − v_in) + p_in n − ½ρ (b·n)⁻ v ]·φ
@@ -28,7 +28,7 @@
 #   with it ½∫(b·n)|v|² becomes ½∫(b·n)⁺|v|² ≥ 0.
 #   ε → 0: Dirichlet v = v_in; ε → ∞: pressure inlet p = p_in (E11a).
 # Stabilisation (E20), each term switched by a 0/1 constant:
-#   R_m = ρ(a0 v + a1 v_n + a2 v_nn + (∇v) b) + ∇p + σ_P χ (v − w)
+#   R_m = ρ(a0 v + a1 v_n + a2 v_nn + (∇v) b − f) + ∇p + σ_P χ (v − w)
 #     (−μΔv vanishes on P1)
 #   SUPG   + Σ_K τ_m (R_m, (∇φ) b)_K
 #   PSPG   + Σ_K (τ_m/ρ) (R_m, ∇q)_K
@@ -56,6 +56,7 @@ v_nn = ufl.Coefficient(V)
 v_star = ufl.Coefficient(V)    # convecting flow velocity (extrapolated/iterate)
 w = ufl.Coefficient(V)         # mesh velocity
 v_in = ufl.Coefficient(V)      # inlet velocity (E11a)
+f = ufl.Coefficient(V)         # body force per unit mass [m/s²]
 chi = ufl.Coefficient(ufl.FunctionSpace(mesh, DG0))  # porous indicator
 
 rho = ufl.Constant(mesh)
@@ -85,12 +86,13 @@ tau_c = 0.5 * h * bnorm
 
 def residual(v, p):
     """Full weak residual F((v, p); (φ, q)); linear in (v, p) for fixed b"""
-    R_m = (rho * (a0 * v + a1 * v_n + a2 * v_nn + grad(v) * b) + grad(p)
+    R_m = (rho * (a0 * v + a1 * v_n + a2 * v_nn + grad(v) * b - f) + grad(p)
            + sigma_p * chi * (v - w))
     F = (rho * inner(a0 * v + a1 * v_n + a2 * v_nn + grad(v) * b, phi) * dx
          + mu * inner(grad(v), grad(phi)) * dx
          - p * div(phi) * dx + div(v) * q * dx
          + sigma_p * chi * inner(v - w, phi) * dx
+         - rho * inner(f, phi) * dx
          + supg * tau_m * inner(R_m, grad(phi) * b) * dx
          + pspg * tau_m / rho * inner(R_m, grad(q)) * dx
          + graddiv * rho * tau_c * div(v) * div(phi) * dx

@@ -82,6 +82,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   _v_in = fn(_V, "inlet_velocity");
   _v_wall = fn(_V, "wall_velocity");
   _chi = fn(_DG0, "porous");
+  _f = fn(_V, "body_force");
 
   auto constant = [&](double v)
   {
@@ -110,7 +111,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
          {"p_out", constant(p.p_out)}};
   std::map<std::string, std::shared_ptr<const fem::Function<double>>> coeffs
       = {{"up", _up}, {"v_n", _v_n},   {"v_nn", _v_nn}, {"v_star", _v_star},
-         {"w", _w},   {"v_in", _v_in}, {"chi", _chi}};
+         {"w", _w},   {"v_in", _v_in}, {"chi", _chi},   {"f", _f}};
 
   // Natural boundaries: ds(1) penalty inlet, ds(2) outlet
   const int fdim = tdim - 1;
@@ -232,6 +233,14 @@ int fsai::fluid::FluidSolver::solve()
   return 1;
 }
 //-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::reset_history()
+{
+  auto v = _v->x()->array();
+  std::copy(v.begin(), v.end(), _v_n->x()->mutable_array().begin());
+  std::copy(v.begin(), v.end(), _v_nn->x()->mutable_array().begin());
+  _steps = 0;
+}
+//-----------------------------------------------------------------------------
 int fsai::fluid::FluidSolver::step()
 {
   common::ScopedTimer timer("fluid: step");
@@ -315,19 +324,32 @@ fsai::fluid::FluidSolver::force(std::span<const std::int32_t> facets)
   r.set(0.0);
   fem::assemble_vector(r.mutable_array(), *_F);
   r.scatter_rev(std::plus<double>());
-  const int tdim = _W->mesh()->topology().dim();
-  const std::int32_t owned = _W->dofmap()->index_map->size_local();
-  std::array<double, 3> local{0, 0, 0}, global{0, 0, 0};
-  for (int i = 0; i < tdim; ++i)
+  // Velocity dofs of the boundary, per component (cached: the same
+  // boundary is asked for every step)
+  std::vector<std::int32_t> key(facets.begin(), facets.end());
+  auto it = _force_dofs.find(key);
+  if (it == _force_dofs.end())
   {
-    // NOTE(DOLFINx 0.5.2): W->sub({0, i}) is not the i-th component of
-    // sub-space 0; chain sub() calls
-    auto dofs = fem::locate_dofs_topological(*_W->sub({0})->sub({i}), tdim - 1,
-                                             facets);
-    for (std::int32_t d : dofs)
-      if (d < owned)
-        local[i] += r.array()[d];
+    const int tdim = _W->mesh()->topology().dim();
+    const std::int32_t owned = _W->dofmap()->index_map->size_local();
+    std::array<std::vector<std::int32_t>, 3> dofs;
+    for (int i = 0; i < tdim; ++i)
+    {
+      // NOTE(DOLFINx 0.5.2): W->sub({0, i}) is not the i-th component of
+      // sub-space 0; chain sub() calls
+      for (std::int32_t d : fem::locate_dofs_topological(
+               *_W->sub({0})->sub({i}), tdim - 1, facets))
+      {
+        if (d < owned)
+          dofs[i].push_back(d);
+      }
+    }
+    it = _force_dofs.emplace(key, std::move(dofs)).first;
   }
+  std::array<double, 3> local{0, 0, 0}, global{0, 0, 0};
+  for (int i = 0; i < 3; ++i)
+    for (std::int32_t d : it->second[i])
+      local[i] += r.array()[d];
   MPI_Allreduce(local.data(), global.data(), 3, MPI_DOUBLE, MPI_SUM,
                 _W->mesh()->comm());
   // The residual at a wall dof is the traction the wall exerts on the

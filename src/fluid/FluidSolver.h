@@ -12,6 +12,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
+#include <map>
 #include <memory>
 #include <span>
 #include <string>
@@ -67,9 +68,14 @@ public:
   dolfinx::fem::Function<double>& wall_velocity() { return *_v_wall; }
   /// Mesh velocity w (ALE)
   dolfinx::fem::Function<double>& mesh_velocity() { return *_w; }
+  /// Body force per unit mass f (gravity, manufactured solutions)
+  dolfinx::fem::Function<double>& body_force() { return *_f; }
   /// Porous indicator χ (DG0)
   dolfinx::fem::Function<double>& porous_indicator() { return *_chi; }
 
+  /// Initial condition: the current velocity() becomes v_n = v_nn, and the
+  /// next step is a BDF1 start
+  void reset_history();
   /// One BDF step t → t + Δt (BDF1 for the first); returns linear solves
   int step();
   /// Steady state by Picard iteration from the current velocity; returns
@@ -83,6 +89,11 @@ public:
   /// Flow rate ∫ v·n ds over `facets` (outward n)
   double flow_rate(std::span<const std::int32_t> facets);
 
+  /// The velocity space (collapsed, P1 vector)
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> velocity_space() const
+  {
+    return _V;
+  }
   std::shared_ptr<dolfinx::fem::Function<double>> velocity() const
   {
     return _v;
@@ -108,7 +119,7 @@ private:
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _W, _V, _Q, _DG0;
   std::vector<std::int32_t> _map_v, _map_p; // collapsed → mixed dofs
   std::shared_ptr<dolfinx::fem::Function<double>> _up, _v, _p, _v_n, _v_nn,
-      _v_star, _w, _v_in, _v_wall, _chi;
+      _v_star, _w, _v_in, _v_wall, _chi, _f;
   std::shared_ptr<dolfinx::fem::Constant<double>> _a0, _a1, _a2, _inv_dt;
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
@@ -116,5 +127,7 @@ private:
   std::shared_ptr<dolfinx::fem::Form<double>> _a, _L, _F;
   dolfinx::la::petsc::Matrix _A;
   dolfinx::la::petsc::KrylovSolver _solver;
+  std::map<std::vector<std::int32_t>, std::array<std::vector<std::int32_t>, 3>>
+      _force_dofs;
 };
 } // namespace fsai::fluid
