@@ -113,4 +113,7 @@ F_res = residual(v_h, p_h)
 # Flow rate through the facets bound to ds(1)
 flux = dot(v_h, n) * ds(1)
 
-forms = [a, L, F_res, flux]
+# ∫|∇p|²: grows with spurious pressure modes (P1/P1 without PSPG)
+grad_p_sq = inner(grad(p_h), grad(p_h)) * dx
+
+forms = [a, L, F_res, flux, grad_p_sq]

@@ -211,6 +211,12 @@ int main(int argc, char* argv[])
           summary.set("wall_per_sim_s", wps);
         }
         summary.set("dofs", flow.dofs());
+        // Diagnostics for the "where methods fail" runs (no PSPG, no SUPG)
+        summary.set("pressure_gradient_l2", flow.pressure_gradient_norm());
+        summary.set("max_speed", flow.max_speed());
+        auto [cfl, re_h] = flow.cfl_and_cell_reynolds();
+        summary.set("cfl_max", cfl);
+        summary.set("cell_reynolds_max", re_h);
         summary.write(cp.output + "/summary.json");
       });
 }

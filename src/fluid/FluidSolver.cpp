@@ -416,3 +416,33 @@ std::array<double, 2> fsai::fluid::FluidSolver::cfl_and_cell_reynolds() const
   return global;
 }
 //-----------------------------------------------------------------------------
+double fsai::fluid::FluidSolver::pressure_gradient_norm()
+{
+  auto mesh = _W->mesh();
+  auto G = fem::create_form<double>(
+      fluid_forms::grad_p_sq(mesh->topology().dim(), 1), {},
+      std::map<std::string, std::shared_ptr<const fem::Function<double>>>{
+          {"up", _up}},
+      std::map<std::string, std::shared_ptr<const fem::Constant<double>>>{}, {},
+      mesh);
+  double local = fem::assemble_scalar(G), global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
+  return std::sqrt(global);
+}
+//-----------------------------------------------------------------------------
+double fsai::fluid::FluidSolver::max_speed() const
+{
+  auto v = _v->x()->array();
+  const int bs = _V->dofmap()->bs();
+  double local = 0, global = 0;
+  for (std::size_t i = 0; i + bs <= v.size(); i += bs)
+  {
+    double s2 = 0;
+    for (int k = 0; k < bs; ++k)
+      s2 += v[i + k] * v[i + k];
+    local = std::max(local, std::sqrt(s2));
+  }
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, _W->mesh()->comm());
+  return global;
+}
+//-----------------------------------------------------------------------------

@@ -106,6 +106,10 @@ public:
   void set_time(double t) { _t = t; }
   double dt() const { return _dt; }
   std::int64_t dofs() const;
+  /// ||∇p||_L2: a measure of spurious pressure oscillations
+  double pressure_gradient_norm();
+  /// Largest nodal speed |v|
+  double max_speed() const;
   /// Largest CFL number |v − w| Δt / h and cell Reynolds number |v| h / ν
   std::array<double, 2> cfl_and_cell_reynolds() const;
 
