@@ -2,6 +2,7 @@
 // Flow (shared/DESIGN.md E11a): the penalty inlet tends to the Dirichlet
 // inflow as ε → 0 and to a pressure inlet as ε → ∞ (Poiseuille channel).
 #include "catch.h"
+#include <ale/PrescribedMotion.h>
 #include <common/log.h>
 #include <dolfinx/mesh/generation.h>
 #include <dolfinx/mesh/utils.h>
@@ -105,58 +106,17 @@ TEST_CASE("Penalty inlet: large epsilon gives the pressure-driven flow",
 
 namespace
 {
-/// Moves the interior of a unit-square mesh: x = X + A sin(ωt) φ(X)
-/// e_{x,y}, φ = sin(πX) sin(πY) (zero on the boundary); the mesh velocity
-/// at the P1 dofs is the BDF2 derivative of the node positions, the one
-/// that keeps the scheme's geometric conservation (E19)
-struct MeshMotion
+/// Interior motion of the unit square: d = A sin(ωt) φ(X) (1, ½),
+/// φ = sin(πX) sin(πY), zero on the boundary
+fsai::ale::PrescribedMotion::Displacement oscillation(double A, double omega)
 {
-  std::shared_ptr<dolfinx::mesh::Mesh> mesh;
-  std::vector<double> X0, dof0; // reference node / dof coordinates
-  double A, omega;
-
-  MeshMotion(std::shared_ptr<dolfinx::mesh::Mesh> m,
-             const dolfinx::fem::FunctionSpace& V, double A_, double w_)
-      : mesh(m), A(A_), omega(w_)
+  return [=](std::array<double, 3> X, double t) -> std::array<double, 3>
   {
-    auto x = mesh->geometry().x();
-    X0.assign(x.begin(), x.end());
-    dof0 = V.tabulate_dof_coordinates(false);
-  }
-  std::array<double, 2> disp(double X, double Y, double t) const
-  {
-    const double s
-        = A * std::sin(omega * t) * std::sin(M_PI * X) * std::sin(M_PI * Y);
-    return {s, 0.5 * s};
-  }
-  void move(double t)
-  {
-    auto x = mesh->geometry().x();
-    for (std::size_t i = 0; i < x.size() / 3; ++i)
-    {
-      auto d = disp(X0[3 * i], X0[3 * i + 1], t);
-      x[3 * i] = X0[3 * i] + d[0];
-      x[3 * i + 1] = X0[3 * i + 1] + d[1];
-    }
-  }
-  /// w at the dofs: (3x(t) − 4x(t−Δt) + x(t−2Δt))/(2Δt) (BDF1 first step)
-  void velocity(dolfinx::fem::Function<double>& w, double t, double dt,
-                bool first) const
-  {
-    auto a = w.x()->mutable_array();
-    for (std::size_t i = 0; i < dof0.size() / 3; ++i)
-    {
-      auto d1 = disp(dof0[3 * i], dof0[3 * i + 1], t);
-      auto d0 = disp(dof0[3 * i], dof0[3 * i + 1], t - dt);
-      auto dm = disp(dof0[3 * i], dof0[3 * i + 1], t - 2 * dt);
-      for (int k = 0; k < 2; ++k)
-      {
-        a[2 * i + k] = first ? (d1[k] - d0[k]) / dt
-                             : (3 * d1[k] - 4 * d0[k] + dm[k]) / (2 * dt);
-      }
-    }
-  }
-};
+    const double s = A * std::sin(omega * t) * std::sin(M_PI * X[0])
+                     * std::sin(M_PI * X[1]);
+    return {s, 0.5 * s, 0.0};
+  };
+}
 } // namespace
 
 TEST_CASE("ALE: uniform flow on an oscillating mesh stays uniform",
@@ -174,7 +134,8 @@ TEST_CASE("ALE: uniform flow on an oscillating mesh stays uniform",
   b.symmetry = c.walls;
   const double dt = 0.02;
   fsai::fluid::FluidSolver flow(c.mesh, b, p, dt);
-  MeshMotion motion(c.mesh, *flow.velocity_space(), 0.05, 2 * M_PI * 2);
+  fsai::ale::PrescribedMotion motion(c.mesh, *flow.velocity_space(),
+                                     oscillation(0.05, 4 * M_PI));
   auto uniform = [](auto& x) -> xt::xarray<double>
   {
     xt::xarray<double> v = xt::zeros<double>({std::size_t(2), x.shape(1)});
@@ -230,7 +191,8 @@ TEST_CASE("ALE: BDF2 is second order in time on a moving mesh",
                              c.walls.end());
     b.outlet = c.outlet;
     fsai::fluid::FluidSolver flow(c.mesh, b, p, dt);
-    MeshMotion motion(c.mesh, *flow.velocity_space(), 0.05, 2 * M_PI);
+    fsai::ale::PrescribedMotion motion(c.mesh, *flow.velocity_space(),
+                                       oscillation(0.05, 2 * M_PI));
     auto exact = [&](double t)
     {
       return [&, t](auto& x) -> xt::xarray<double>
