@@ -245,3 +245,67 @@ TEST_CASE("ALE: BDF2 is second order in time on a moving mesh",
                   err[0], err[1], err[2], rate);
   CHECK(rate == Approx(2.0).margin(0.2));
 }
+
+TEST_CASE("3D channel: the iterative fieldsplit solver matches MUMPS",
+          "[fluid][mpi]")
+{
+  using namespace dolfinx::mesh;
+  const double H = 0.2;
+  auto mesh = std::make_shared<Mesh>(
+      create_box(MPI_COMM_WORLD, {{{0, 0, 0}, {1, H, H}}}, {10, 3, 3},
+                 CellType::tetrahedron, GhostMode::shared_facet));
+  mesh->topology_mutable().create_connectivity(2, 3);
+  auto at = [&](int axis, double v)
+  {
+    return locate_entities_boundary(*mesh, 2,
+                                    [=](auto& x) -> xt::xtensor<bool, 1> {
+                                      return xt::isclose(xt::row(x, axis), v);
+                                    });
+  };
+  fsai::fluid::FluidBoundaries b;
+  b.inlet_dirichlet = at(0, 0.0);
+  b.outlet = at(0, 1.0);
+  for (auto [axis, v] : {std::pair{1, 0.0}, {1, H}, {2, 0.0}, {2, H}})
+  {
+    auto f = at(axis, v);
+    b.walls.insert(b.walls.end(), f.begin(), f.end());
+  }
+  std::vector<std::vector<double>> v;
+  std::vector<double> q;
+  for (std::string solver : {"direct", "iterative"})
+  {
+    fsai::fluid::FluidParameters p;
+    p.rho = 1.0;
+    p.mu = 1e-2;
+    p.solver = solver;
+    fsai::fluid::FluidSolver flow(mesh, b, p, 1.0);
+    flow.inlet_velocity().interpolate(
+        [&](auto& x) -> xt::xarray<double>
+        {
+          xt::xarray<double> u
+              = xt::zeros<double>({std::size_t(3), x.shape(1)});
+          for (std::size_t i = 0; i < x.shape(1); ++i)
+            u(0, i) = 0.1 * 16 * x(1, i) * (H - x(1, i)) * x(2, i)
+                      * (H - x(2, i)) / (H * H * H * H);
+          return u;
+        });
+    const int its = flow.solve_steady(50);
+    v.emplace_back(flow.velocity()->x()->array().begin(),
+                   flow.velocity()->x()->array().end());
+    q.push_back(flow.flow_rate(b.outlet));
+    fsai::log::info("Fluid 3D channel ({}): {} Picard iterations, outlet flow "
+                    "rate {:.8e}",
+                    solver, its, q.back());
+  }
+  double d = 0, m = 0;
+  for (std::size_t i = 0; i < v[0].size(); ++i)
+    d = std::max(d, std::abs(v[0][i] - v[1][i])),
+    m = std::max(m, std::abs(v[0][i]));
+  double g[2], l[2] = {d, m};
+  MPI_Allreduce(l, g, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  fsai::log::info("Fluid 3D channel: max |v_direct - v_iterative| / max |v| = "
+                  "{:.2e}",
+                  g[0] / g[1]);
+  CHECK(g[0] / g[1] < 1e-6);
+  CHECK(q[1] == Approx(q[0]).epsilon(1e-6));
+}

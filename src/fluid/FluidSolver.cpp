@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <fsai_forms/fluid.h>
 #include <numeric>
+#include <petscpc.h>
 
 using namespace dolfinx;
 namespace fluid_forms = fsai::forms::fluid;
@@ -30,6 +31,8 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
   p.add("fluid.inlet_eps", inlet_eps, "inlet penalty epsilon [s/m]");
   p.add("fluid.p_in", p_in, "inlet reference pressure [Pa]");
   p.add("fluid.p_out", p_out, "outlet reference pressure [Pa]");
+  p.add_choice("fluid.solver", solver, {"direct", "iterative"},
+               "linear solver: MUMPS LU, or Schur fieldsplit + AMG (3D)");
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidParameters::validate() const
@@ -159,11 +162,61 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
       fluid_forms::F_res(tdim, 1), {_W}, coeffs, c, sd));
   _A = la::petsc::Matrix(fem::petsc::create_matrix(*_a), false);
 
-  common::set_option_default("fluid_ksp_type", "preonly");
-  common::set_option_default("fluid_pc_type", "lu");
-  common::set_option_default("fluid_pc_factor_mat_solver_type", "mumps");
+  // Defaults set on this KSP, then the options database (prefix fluid_)
+  // overrides them: global option defaults would leak from one solver
+  // instance to the next
+  KSP ksp = _solver.ksp();
+  PC pc;
+  KSPGetPC(ksp, &pc);
+  if (p.solver == "direct")
+  {
+    KSPSetType(ksp, KSPPREONLY);
+    PCSetType(pc, PCLU);
+    PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
+  }
+  else
+  {
+    // Block-triangular Schur preconditioner; PSPG makes the pressure block
+    // nonzero, so selfp (A_pp − A_pu diag(A_uu)⁻¹ A_up) is a usable Schur
+    // approximation, and both blocks get one AMG V-cycle
+    KSPSetType(ksp, KSPFGMRES);
+    KSPGMRESSetRestart(ksp, 100);
+    KSPSetTolerances(ksp, 1e-10, 1e-50, PETSC_DEFAULT, 500);
+    PCSetType(pc, PCFIELDSPLIT);
+    PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR);
+    PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER);
+    PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr);
+    common::set_option_default("fluid_fieldsplit_u_ksp_type", "preonly");
+    common::set_option_default("fluid_fieldsplit_u_pc_type", "hypre");
+    common::set_option_default("fluid_fieldsplit_p_ksp_type", "preonly");
+    common::set_option_default("fluid_fieldsplit_p_pc_type", "hypre");
+  }
   _solver.set_options_prefix("fluid_");
   _solver.set_from_options();
+  PetscBool is_fieldsplit;
+  PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &is_fieldsplit);
+  if (is_fieldsplit)
+  {
+    // Velocity and pressure dofs (owned, global numbering of W)
+    auto map = _W->dofmap()->index_map;
+    const std::int32_t owned = map->size_local();
+    for (auto [name, sub] : {std::pair{"u", &_map_v}, {"p", &_map_p}})
+    {
+      std::vector<std::int32_t> local;
+      for (std::int32_t d : *sub)
+        if (d < owned)
+          local.push_back(d);
+      std::sort(local.begin(), local.end());
+      std::vector<std::int64_t> global(local.size());
+      map->local_to_global(local, global);
+      std::vector<PetscInt> idx(global.begin(), global.end());
+      IS is;
+      ISCreateGeneral(mesh->comm(), PetscInt(idx.size()), idx.data(),
+                      PETSC_COPY_VALUES, &is);
+      PCFieldSplitSetIS(pc, name, is);
+      ISDestroy(&is);
+    }
+  }
 }
 //-----------------------------------------------------------------------------
 std::int64_t fsai::fluid::FluidSolver::dofs() const

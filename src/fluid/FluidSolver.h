@@ -39,6 +39,10 @@ struct FluidParameters
   double inlet_eps = 0.0;   ///< inlet penalty ε [s/m] (0: not used)
   double p_in = 0.0;        ///< inlet reference pressure [Pa]
   double p_out = 0.0;       ///< outlet reference pressure [Pa]
+  /// "direct" (MUMPS LU) or "iterative" (FGMRES, Schur fieldsplit with
+  /// BoomerAMG on the velocity block and on the selfp pressure Schur
+  /// complement: for 3D)
+  std::string solver = "direct";
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
