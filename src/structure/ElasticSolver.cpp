@@ -33,9 +33,9 @@ double global_norm(const la::Vector<double>& x)
 //-----------------------------------------------------------------------------
 void fsai::structure::Material::validate(const std::string& what) const
 {
-  fsai::require_positive(what + ": E", E);
-  fsai::require(nu > -1.0 and nu < 0.5, what + ": nu", "in (-1, 0.5)", nu);
-  fsai::require_positive(what + ": rho", rho);
+  fsai::require_positive(what + ".E", E);
+  fsai::require(nu > -1.0 and nu < 0.5, what + ".nu", "in (-1, 0.5)", nu);
+  fsai::require_positive(what + ".rho", rho);
 }
 //-----------------------------------------------------------------------------
 void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
