@@ -3,6 +3,7 @@
 #include "../common/Parameters.h"
 #include "../common/Runtime.h"
 #include "../common/errors.h"
+#include "../common/petsc_solver.h"
 #include "../common/timer.h"
 #include <cmath>
 #include <dolfinx/fem/DirichletBC.h>
@@ -49,14 +50,6 @@ role_tags(std::shared_ptr<const mesh::Mesh> mesh,
   std::vector<std::int32_t> values(kept.size(), 1);
   return std::make_shared<mesh::MeshTags<std::int32_t>>(
       mesh, fdim, std::move(kept), std::move(values));
-}
-
-/// Direct solver package: PETSc's own LU is serial only
-std::string lu_package(MPI_Comm comm)
-{
-  int size;
-  MPI_Comm_size(comm, &size);
-  return size == 1 ? "petsc" : "mumps";
 }
 
 /// Assemble a bilinear form into a new PETSc matrix (no boundary rows
@@ -253,19 +246,9 @@ fsai::acoustics::WaveSolver::WaveSolver(
   MPI_Allreduce(&local, &_inlet_measure, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
   t_assemble.stop();
 
-  // Linear solver: the factorisation is computed at the first solve and while
-  // the operator does not change reused while the operator does not change.
-  // PETSc's own LU is ~8x faster per solve than MUMPS on one rank for these
-  // small 2D systems (measured: 0.13 ms vs 1.0 ms, 5.7k dofs); MUMPS in
-  // parallel.
-  common::set_option_default("acoustic_ksp_type", "preonly");
-  common::set_option_default("acoustic_pc_type", "lu");
-  common::set_option_default("acoustic_pc_factor_mat_solver_type",
-                             lu_package(mesh->comm()));
-  // PETSc's zero-pivot test is absolute (2.2e-14): the entries of M ~
-  // r |cell| / c0² are far below it on fine axisymmetric meshes, although
-  // A is symmetric positive definite; test for exact zeros only
-  common::set_option_default("acoustic_pc_factor_zeropivot", "0");
+  // Linear solver: the factorisation is computed at the first solve and
+  // reused while the operator does not change
+  common::configure_direct_solver(_solver.ksp(), mesh->comm(), tdim);
   _solver.set_options_prefix("acoustic_");
   _solver.set_from_options();
   _solver.set_operator(_A.mat());
@@ -355,12 +338,9 @@ void fsai::acoustics::WaveSolver::set_initial_state(
     r[i] = 0.0;
   VecRestoreArray(_rhs.vec(), &r);
 
-  common::set_option_default("acoustic_mass_ksp_type", "preonly");
-  common::set_option_default("acoustic_mass_pc_type", "lu");
-  common::set_option_default("acoustic_mass_pc_factor_mat_solver_type",
-                             lu_package(_V->mesh()->comm()));
-  common::set_option_default("acoustic_mass_pc_factor_zeropivot", "0");
   la::petsc::KrylovSolver mass_solver(_V->mesh()->comm());
+  common::configure_direct_solver(mass_solver.ksp(), _V->mesh()->comm(),
+                                  _V->mesh()->topology().dim());
   mass_solver.set_options_prefix("acoustic_mass_");
   mass_solver.set_from_options();
   mass_solver.set_operator(Mbc.mat());

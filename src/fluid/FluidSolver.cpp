@@ -3,6 +3,7 @@
 #include "../common/Parameters.h"
 #include "../common/Runtime.h"
 #include "../common/errors.h"
+#include "../common/petsc_solver.h"
 #include "../common/timer.h"
 #include <cmath>
 #include <dolfinx/fem/assembler.h>
@@ -169,11 +170,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   PC pc;
   KSPGetPC(ksp, &pc);
   if (p.solver == "direct")
-  {
-    KSPSetType(ksp, KSPPREONLY);
-    PCSetType(pc, PCLU);
-    PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
-  }
+    common::configure_direct_solver(ksp, mesh->comm(), tdim);
   else
   {
     // Block-triangular Schur preconditioner; PSPG makes the pressure block

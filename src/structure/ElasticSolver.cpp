@@ -3,6 +3,7 @@
 #include "../common/Parameters.h"
 #include "../common/Runtime.h"
 #include "../common/errors.h"
+#include "../common/petsc_solver.h"
 #include "../common/timer.h"
 #include <cmath>
 #include <dolfinx/fem/assembler.h>
@@ -16,14 +17,6 @@ namespace structure_forms = fsai::forms::structure;
 
 namespace
 {
-/// PETSc's own LU for small serial 2D problems, MUMPS otherwise (3D fill)
-std::string lu_package(MPI_Comm comm, int tdim)
-{
-  int size;
-  MPI_Comm_size(comm, &size);
-  return size == 1 and tdim == 2 ? "petsc" : "mumps";
-}
-
 double global_norm(const la::Vector<double>& x)
 {
   return la::norm(x, la::Norm::l2);
@@ -170,12 +163,7 @@ fsai::structure::ElasticSolver::ElasticSolver(
       structure_forms::m(tdim, deg), {_V, _V}, coeffs, c, {}));
   _Jmat = la::petsc::Matrix(fem::petsc::create_matrix(*_J), false);
 
-  common::set_option_default("solid_ksp_type", "preonly");
-  common::set_option_default("solid_pc_type", "lu");
-  common::set_option_default("solid_pc_factor_mat_solver_type",
-                             lu_package(mesh->comm(), tdim));
-  // Absolute zero-pivot test of PETSc vs soft tissue (E ~ kPa, small cells)
-  common::set_option_default("solid_pc_factor_zeropivot", "0");
+  common::configure_direct_solver(_solver.ksp(), mesh->comm(), tdim);
   _solver.set_options_prefix("solid_");
   _solver.set_from_options();
   _solver.set_operator(_Jmat.mat());

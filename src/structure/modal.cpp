@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "modal.h"
 #include "../common/Runtime.h"
+#include "../common/petsc_solver.h"
 #include "../common/timer.h"
 #include <algorithm>
 #include <cmath>
@@ -35,25 +36,20 @@ fsai::structure::modal_analysis(const ElasticSolver& solid, int n)
   }();
   la::petsc::Matrix M = solid.mass_matrix();
 
-  int size;
-  MPI_Comm_size(comm, &size);
-  common::set_option_default("modal_st_type", "sinvert");
-  common::set_option_default("modal_st_ksp_type", "preonly");
-  common::set_option_default("modal_st_pc_type", "lu");
-  // PETSc's own LU is fast for small 2D problems; in 3D its fill makes it
-  // ~3x slower than MUMPS (measured: 14.2 s vs 5.0 s, 34k P2 dofs)
-  const bool small = size == 1 and V->mesh()->topology().dim() == 2;
-  common::set_option_default("modal_st_pc_factor_mat_solver_type",
-                             small ? "petsc" : "mumps");
-  common::set_option_default("modal_st_pc_factor_zeropivot", "0");
-  common::set_option_default("modal_eps_tol", "1e-10");
-
   Eps e(comm);
   EPSSetOperators(e.eps, K.mat(), M.mat());
   EPSSetProblemType(e.eps, EPS_GHEP);
   EPSSetWhichEigenpairs(e.eps, EPS_TARGET_MAGNITUDE);
   EPSSetTarget(e.eps, 0.0);
   EPSSetDimensions(e.eps, n, PETSC_DEFAULT, PETSC_DEFAULT);
+  EPSSetTolerances(e.eps, 1e-10, PETSC_DEFAULT);
+  // Shift-and-invert about 0 with a direct solve (options may override)
+  ST st;
+  EPSGetST(e.eps, &st);
+  STSetType(st, STSINVERT);
+  KSP st_ksp;
+  STGetKSP(st, &st_ksp);
+  common::configure_direct_solver(st_ksp, comm, V->mesh()->topology().dim());
   EPSSetOptionsPrefix(e.eps, "modal_");
   EPSSetFromOptions(e.eps);
   {
