@@ -309,3 +309,51 @@ TEST_CASE("3D channel: the iterative fieldsplit solver matches MUMPS",
   CHECK(g[0] / g[1] < 1e-6);
   CHECK(q[1] == Approx(q[0]).epsilon(1e-6));
 }
+
+TEST_CASE("2D channel start-up: the iterative solvers (AMG and ILU velocity "
+          "block) match MUMPS step by step",
+          "[fluid][mpi]")
+{
+  const double L = 1.0, H = 0.2;
+  auto c = channel(L, H, 40, 8);
+  fsai::fluid::FluidBoundaries b;
+  b.inlet_dirichlet = c.inlet;
+  b.outlet = c.outlet;
+  b.walls = c.walls;
+  std::vector<std::vector<double>> v;
+  for (std::string pc : {"direct", "amg", "ilu"})
+  {
+    fsai::fluid::FluidParameters p;
+    p.rho = 1.0;
+    p.mu = 1e-3;
+    p.solver = pc == "direct" ? "direct" : "iterative";
+    p.velocity_pc = pc == "ilu" ? "ilu" : "amg";
+    fsai::fluid::FluidSolver flow(c.mesh, b, p, 0.01);
+    flow.inlet_velocity().interpolate(
+        [&](auto& x) -> xt::xarray<double>
+        {
+          xt::xarray<double> u
+              = xt::zeros<double>({std::size_t(2), x.shape(1)});
+          for (std::size_t i = 0; i < x.shape(1); ++i)
+            u(0, i) = 6 * x(1, i) * (H - x(1, i)) / (H * H);
+          return u;
+        });
+    for (int n = 0; n < 5; ++n)
+      flow.step();
+    v.emplace_back(flow.velocity()->x()->array().begin(),
+                   flow.velocity()->x()->array().end());
+  }
+  for (int k : {1, 2})
+  {
+    double d = 0, m = 0;
+    for (std::size_t i = 0; i < v[0].size(); ++i)
+      d = std::max(d, std::abs(v[0][i] - v[k][i])),
+      m = std::max(m, std::abs(v[0][i]));
+    double g[2], l[2] = {d, m};
+    MPI_Allreduce(l, g, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    fsai::log::info("Fluid 2D start-up, 5 BDF steps: max |v_direct - v_{}| / "
+                    "max |v| = {:.2e}",
+                    k == 1 ? "amg" : "ilu", g[0] / g[1]);
+    CHECK(g[0] / g[1] < 1e-6);
+  }
+}

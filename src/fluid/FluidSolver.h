@@ -43,6 +43,12 @@ struct FluidParameters
   /// BoomerAMG on the velocity block and on the selfp pressure Schur
   /// complement: for 3D)
   std::string solver = "direct";
+  /// Velocity-block preconditioner of "iterative": "amg" (BoomerAMG, works
+  /// for steady and transient flow) or "ilu" (block-Jacobi ILU(0): cheaper
+  /// when the mass term ρ a0 M dominates the block, i.e. transient runs at
+  /// moderate CFL; poor for steady problems)
+  std::string velocity_pc = "amg";
+  double ksp_rtol = 1e-8; ///< "iterative": relative to the initial residual
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
@@ -119,6 +125,8 @@ public:
 
 private:
   int solve(); // assemble and solve once with the current b; updates _up
+  void configure_blocks(); // fieldsplit block solvers, at the first solve
+  bool _configure_blocks = false;
   void split();
 
   FluidParameters _par;

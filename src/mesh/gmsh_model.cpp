@@ -261,6 +261,31 @@ fsai::mesh::MeshData fsai::mesh::model_to_mesh(MPI_Comm comm, int root,
           facet_values = f.tags;
           facet_names = pack_names(f.names);
         }
+
+        // Keep only the nodes of cells: gmsh also meshes construction
+        // points (spline control points, unused .geo points), and DOLFINx
+        // 0.5.2 crashes in distribute_entity_data on unreferenced nodes
+        std::vector<std::int64_t> renum(x.size() / gdim, -1);
+        std::int64_t used = 0;
+        for (std::int64_t& n : cells)
+        {
+          if (renum[n] < 0)
+            renum[n] = used++;
+          n = renum[n];
+        }
+        for (std::int64_t& n : facets)
+        {
+          if (renum[n] < 0)
+            throw std::runtime_error("gmsh model: a tagged facet has a node "
+                                     "that belongs to no cell");
+          n = renum[n];
+        }
+        std::vector<double> xc(used * gdim);
+        for (std::size_t i = 0; i < renum.size(); ++i)
+          if (renum[i] >= 0)
+            std::copy_n(x.begin() + i * gdim, gdim,
+                        xc.begin() + renum[i] * gdim);
+        x = std::move(xc);
       },
       "");
   broadcast(comm, root, cell_names);
