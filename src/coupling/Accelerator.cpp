@@ -1,0 +1,229 @@
+// Copyright (C) 2026 fsai developers
+#include "Accelerator.h"
+#include "../common/Parameters.h"
+#include "../common/errors.h"
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+//-----------------------------------------------------------------------------
+void fsai::coupling::AcceleratorParameters::bind(fsai::common::Parameters& p)
+{
+  p.add_choice("coupling.method", method, {"constant", "aitken", "iqn-ils"},
+               "coupling accelerator");
+  p.add("coupling.omega", omega,
+        "constant relaxation factor; first factor of aitken and iqn-ils");
+  p.add("coupling.reuse", reuse, "iqn-ils: past time steps reused");
+  p.add("coupling.filter", filter, "iqn-ils: QR1 filter epsilon");
+}
+//-----------------------------------------------------------------------------
+void fsai::coupling::AcceleratorParameters::validate() const
+{
+  fsai::require(method == "constant" or method == "aitken"
+                    or method == "iqn-ils",
+                "--coupling.method", "constant, aitken or iqn-ils", method);
+  fsai::require(omega > 0 and omega <= 2, "--coupling.omega", "in (0, 2]",
+                omega);
+  fsai::require(reuse >= 0 and reuse <= 100, "--coupling.reuse", "in [0, 100]",
+                reuse);
+  fsai::require(filter >= 0 and filter < 1, "--coupling.filter", "in [0, 1)",
+                filter);
+}
+//-----------------------------------------------------------------------------
+double fsai::coupling::norm(MPI_Comm comm, std::span<const double> v)
+{
+  double s = std::inner_product(v.begin(), v.end(), v.begin(), 0.0);
+  MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return std::sqrt(s);
+}
+//-----------------------------------------------------------------------------
+namespace
+{
+using vec = std::vector<double>;
+
+double dot(MPI_Comm comm, std::span<const double> a, std::span<const double> b)
+{
+  double s = std::inner_product(a.begin(), a.end(), b.begin(), 0.0);
+  MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return s;
+}
+
+vec residual(std::span<const double> x, std::span<const double> Hx)
+{
+  vec r(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i)
+    r[i] = Hx[i] - x[i];
+  return r;
+}
+
+class Constant : public fsai::coupling::Accelerator
+{
+public:
+  explicit Constant(double omega) : _omega(omega) {}
+  void new_step() override {}
+  void update(std::span<const double> x, std::span<const double> Hx,
+              std::span<double> x_next) override
+  {
+    for (std::size_t i = 0; i < x.size(); ++i)
+      x_next[i] = x[i] + _omega * (Hx[i] - x[i]);
+  }
+  double last_omega() const override { return _omega; }
+
+private:
+  double _omega;
+};
+
+class Aitken : public fsai::coupling::Accelerator
+{
+public:
+  Aitken(MPI_Comm comm, double omega0) : _comm(comm), _omega0(omega0) {}
+  void new_step() override { _r_prev.clear(); }
+  void update(std::span<const double> x, std::span<const double> Hx,
+              std::span<double> x_next) override
+  {
+    vec r = residual(x, Hx);
+    if (_r_prev.empty())
+      _omega = _omega0;
+    else
+    {
+      vec dr(r.size());
+      for (std::size_t i = 0; i < r.size(); ++i)
+        dr[i] = r[i] - _r_prev[i];
+      const double dd = dot(_comm, dr, dr);
+      if (dd > 0)
+        _omega = -_omega * dot(_comm, _r_prev, dr) / dd;
+    }
+    for (std::size_t i = 0; i < x.size(); ++i)
+      x_next[i] = x[i] + _omega * r[i];
+    _r_prev = std::move(r);
+  }
+  double last_omega() const override { return _omega; }
+
+private:
+  MPI_Comm _comm;
+  double _omega0, _omega = 0;
+  vec _r_prev;
+};
+
+class IQNILS : public fsai::coupling::Accelerator
+{
+public:
+  IQNILS(MPI_Comm comm, const fsai::coupling::AcceleratorParameters& p)
+      : _comm(comm), _p(p)
+  {
+  }
+  void new_step() override
+  {
+    if (!_step.empty())
+      _history.push_front(std::move(_step));
+    _step.clear();
+    while (int(_history.size()) > _p.reuse)
+      _history.pop_back();
+    _r_prev.clear();
+  }
+  void update(std::span<const double> x, std::span<const double> Hx,
+              std::span<double> x_next) override
+  {
+    vec r = residual(x, Hx);
+    if (!_r_prev.empty())
+    {
+      Column c{vec(r.size()), vec(r.size())};
+      for (std::size_t i = 0; i < r.size(); ++i)
+      {
+        c.dr[i] = r[i] - _r_prev[i];
+        c.dx[i] = Hx[i] - _Hx_prev[i];
+      }
+      _step.insert(_step.begin(), std::move(c)); // newest first
+    }
+    _r_prev = r;
+    _Hx_prev.assign(Hx.begin(), Hx.end());
+
+    // Columns: this step's, then the reused steps', newest first
+    std::vector<const Column*> cols;
+    for (auto& c : _step)
+      cols.push_back(&c);
+    for (auto& s : _history)
+      for (auto& c : s)
+        cols.push_back(&c);
+
+    // QR of V by modified Gram–Schmidt, dropping (nearly) dependent
+    // columns (QR1 filter)
+    std::vector<vec> Q;
+    std::vector<std::vector<double>> R; // R[j] = column j of R (size j+1)
+    std::vector<const Column*> kept;
+    for (const Column* c : cols)
+    {
+      vec v = c->dr;
+      const double n0 = fsai::coupling::norm(_comm, v);
+      std::vector<double> rj;
+      for (auto& q : Q)
+      {
+        const double h = dot(_comm, q, v);
+        for (std::size_t i = 0; i < v.size(); ++i)
+          v[i] -= h * q[i];
+        rj.push_back(h);
+      }
+      const double n = fsai::coupling::norm(_comm, v);
+      if (n0 == 0 or n < _p.filter * n0)
+        continue;
+      for (double& vi : v)
+        vi /= n;
+      rj.push_back(n);
+      Q.push_back(std::move(v));
+      R.push_back(std::move(rj));
+      kept.push_back(c);
+    }
+
+    if (kept.empty())
+    {
+      _omega = _p.omega;
+      for (std::size_t i = 0; i < x.size(); ++i)
+        x_next[i] = x[i] + _p.omega * r[i];
+      return;
+    }
+    // R c = −Qᵀ r, back substitution
+    const std::size_t m = kept.size();
+    std::vector<double> c(m);
+    for (std::size_t j = 0; j < m; ++j)
+      c[j] = -dot(_comm, Q[j], r);
+    for (std::size_t j = m; j-- > 0;)
+    {
+      for (std::size_t k = j + 1; k < m; ++k)
+        c[j] -= R[k][j] * c[k];
+      c[j] /= R[j][j];
+    }
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+      double w = 0;
+      for (std::size_t j = 0; j < m; ++j)
+        w += kept[j]->dx[i] * c[j];
+      x_next[i] = Hx[i] + w;
+    }
+    _omega = std::numeric_limits<double>::quiet_NaN();
+  }
+  double last_omega() const override { return _omega; }
+
+private:
+  struct Column
+  {
+    vec dr, dx;
+  };
+  MPI_Comm _comm;
+  fsai::coupling::AcceleratorParameters _p;
+  std::vector<Column> _step;
+  std::deque<std::vector<Column>> _history;
+  vec _r_prev, _Hx_prev;
+  double _omega = 0;
+};
+} // namespace
+//-----------------------------------------------------------------------------
+std::unique_ptr<fsai::coupling::Accelerator>
+fsai::coupling::make_accelerator(MPI_Comm comm, const AcceleratorParameters& p)
+{
+  p.validate();
+  if (p.method == "constant")
+    return std::make_unique<Constant>(p.omega);
+  if (p.method == "aitken")
+    return std::make_unique<Aitken>(comm, p.omega);
+  return std::make_unique<IQNILS>(comm, p);
+}

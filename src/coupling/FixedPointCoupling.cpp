@@ -1,0 +1,103 @@
+// Copyright (C) 2026 fsai developers
+#include "FixedPointCoupling.h"
+#include "../common/Parameters.h"
+#include "../common/errors.h"
+#include "../common/log.h"
+#include "../io/CsvWriter.h"
+#include <cmath>
+#include <stdexcept>
+
+//-----------------------------------------------------------------------------
+void fsai::coupling::CouplingParameters::bind(fsai::common::Parameters& p)
+{
+  accelerator.bind(p);
+  p.add("coupling.tol", tol, "relative interface residual tolerance");
+  p.add("coupling.max_iterations", max_iterations,
+        "coupling iterations per step (1: explicit)");
+  p.add_choice("coupling.on_failure", on_failure, {"error", "warn"},
+               "unconverged step: stop with an error, or warn and go on");
+}
+//-----------------------------------------------------------------------------
+void fsai::coupling::CouplingParameters::validate() const
+{
+  accelerator.validate();
+  fsai::require(tol > 0 and tol < 1, "--coupling.tol", "in (0, 1)", tol);
+  fsai::require(max_iterations >= 1 and max_iterations <= 1000,
+                "--coupling.max_iterations", "in [1, 1000]", max_iterations);
+  fsai::require(on_failure == "error" or on_failure == "warn",
+                "--coupling.on_failure", "error or warn", on_failure);
+}
+//-----------------------------------------------------------------------------
+fsai::coupling::FixedPointCoupling::FixedPointCoupling(
+    MPI_Comm comm, const CouplingParameters& p, const std::string& csv_path)
+    : _comm(comm), _par(p)
+{
+  p.validate();
+  _acc = make_accelerator(comm, p.accelerator);
+  if (!csv_path.empty())
+  {
+    _csv = std::make_unique<io::CsvWriter>(
+        comm, csv_path,
+        std::vector<std::string>{"t_s", "iterations", "residual",
+                                 "first_residual", "residual_abs",
+                                 "converged", "omega"});
+  }
+}
+//-----------------------------------------------------------------------------
+fsai::coupling::FixedPointCoupling::~FixedPointCoupling() = default;
+//-----------------------------------------------------------------------------
+fsai::coupling::StepReport
+fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
+                                         const Map& H)
+{
+  _acc->new_step();
+  StepReport rep;
+  std::vector<double> Hx(x.size()), r(x.size()), next(x.size());
+  for (int k = 1; k <= _par.max_iterations; ++k)
+  {
+    H(x, Hx);
+    for (std::size_t i = 0; i < x.size(); ++i)
+      r[i] = Hx[i] - x[i];
+    const double nr = norm(_comm, r), nH = norm(_comm, Hx);
+    if (!std::isfinite(nr))
+    {
+      throw std::runtime_error(fmt::format(
+          "coupling: interface residual is not finite at t = {:.6g} s, "
+          "iteration {}",
+          t, k));
+    }
+    // Relative to |H(x)|; absolute when the interface is at rest
+    rep.residual = nH > 0 ? nr / nH : nr;
+    rep.residual_abs = nr;
+    rep.iterations = k;
+    if (k == 1)
+      rep.first_residual = rep.residual, rep.first_residual_abs = nr;
+    if (rep.residual <= _par.tol)
+    {
+      rep.converged = true;
+      break;
+    }
+    if (k == _par.max_iterations and _par.max_iterations > 1)
+      break;
+    _acc->update(x, Hx, next);
+    x.swap(next);
+  }
+  const bool explicit_scheme = _par.max_iterations == 1;
+  if (_csv)
+  {
+    _csv->row({t, double(rep.iterations), rep.residual, rep.first_residual,
+               rep.residual_abs, rep.converged ? 1.0 : 0.0,
+               _acc->last_omega()});
+  }
+  if (!rep.converged and !explicit_scheme)
+  {
+    const std::string msg = fmt::format(
+        "coupling: not converged at t = {:.6g} s after {} iterations "
+        "(relative interface residual {:.3e}, tolerance {:g}, {})",
+        t, rep.iterations, rep.residual, _par.tol, _par.accelerator.method);
+    if (_par.on_failure == "error")
+      throw std::runtime_error(msg);
+    fsai::log::warn("{}", msg);
+  }
+  return rep;
+}

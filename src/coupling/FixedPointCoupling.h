@@ -1,0 +1,77 @@
+// Copyright (C) 2026 fsai developers
+//
+// The coupling iteration of one time step of the partitioned FSI loop
+// (shared/DESIGN.md §2 "Coupling", §4; paper §3.3, loop O–V): the caller's
+// map H (structure step with the interface load, ALE move, flow step,
+// consistent interface traction E12 → the new interface variable) is
+// iterated with an Accelerator until the relative interface residual
+//   |H(x_k) − x_k| / |H(x_k)|
+// is below `tol`. One pass (`max_iterations` = 1, constant ω = 1) is the
+// explicit (loosely coupled) scheme. A step that does not converge is an
+// error or a logged warning by policy, never silent; every step's
+// iterations, residual and relaxation go to a CSV file.
+#pragma once
+
+#include "Accelerator.h"
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fsai::io
+{
+class CsvWriter;
+}
+
+namespace fsai::coupling
+{
+/// Coupling parameters ([coupling] section, with the accelerator's)
+struct CouplingParameters
+{
+  AcceleratorParameters accelerator;
+  double tol = 1e-6;      ///< relative interface residual
+  int max_iterations = 50; ///< per time step (1: explicit coupling)
+  /// What a step that misses `tol` in `max_iterations` does: "error"
+  /// (throws) or "warn" (logs and goes on)
+  std::string on_failure = "error";
+
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+};
+
+/// Outcome of one coupled time step
+struct StepReport
+{
+  int iterations = 0;
+  double residual = 0;      ///< relative residual of the last iteration
+  double first_residual = 0; ///< relative residual of the first iteration
+  double residual_abs = 0;       ///< |H(x) − x| of the last iteration
+  double first_residual_abs = 0; ///< |H(x) − x| of the first iteration
+  bool converged = false;
+};
+
+class FixedPointCoupling
+{
+public:
+  /// The interface map: fills Hx = H(x) (rank-local parts)
+  using Map = std::function<void(std::span<const double> x,
+                                 std::span<double> Hx)>;
+
+  /// @param[in] csv_path Per-step log (empty: none)
+  FixedPointCoupling(MPI_Comm comm, const CouplingParameters& p,
+                     const std::string& csv_path = "");
+  ~FixedPointCoupling();
+
+  /// Iterate one time step from the predictor x (on return: the last
+  /// iterate, whose H the sub-solvers hold)
+  StepReport step(double t, std::vector<double>& x, const Map& H);
+
+private:
+  MPI_Comm _comm;
+  CouplingParameters _par;
+  std::unique_ptr<Accelerator> _acc;
+  std::unique_ptr<fsai::io::CsvWriter> _csv;
+};
+} // namespace fsai::coupling
