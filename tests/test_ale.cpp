@@ -27,8 +27,9 @@ p1_space(std::shared_ptr<dolfinx::mesh::Mesh> mesh)
 }
 
 /// Set the interface displacement from its reference dof coordinates
-void set_interface(fsai::ale::MeshMotion& m, const std::vector<double>& X,
-                   const std::function<std::array<double, 2>(double, double)>& d)
+void set_interface(
+    fsai::ale::MeshMotion& m, const std::vector<double>& X,
+    const std::function<std::array<double, 2>(double, double)>& d)
 {
   auto a = m.interface_displacement().x()->mutable_array();
   for (std::size_t i = 0; i < X.size() / 3; ++i)
@@ -122,19 +123,17 @@ double squeeze(const fsai::mesh::MeshData& m, double g0,
       for (int n = 1; n <= steps; ++n)
       {
         const double s = closure * n / steps;
-        set_interface(motion, X,
-                      [&](double x, double y) -> std::array<double, 2>
-                      {
-                        const double w
-                            = std::pow(std::sin(M_PI * (x - 4 * mm) / (4 * mm)),
-                                       2);
-                        const double phi = phi_max * s, rx = x - 6 * mm,
-                                     ry = y - 3 * mm;
-                        return {w * (std::cos(phi) * rx - std::sin(phi) * ry
-                                     - rx),
-                                w * (std::sin(phi) * rx + std::cos(phi) * ry - ry
-                                     - s * g0)};
-                      });
+        set_interface(
+            motion, X,
+            [&](double x, double y) -> std::array<double, 2>
+            {
+              const double w
+                  = std::pow(std::sin(M_PI * (x - 4 * mm) / (4 * mm)), 2);
+              const double phi = phi_max * s, rx = x - 6 * mm, ry = y - 3 * mm;
+              return {
+                  w * (std::cos(phi) * rx - std::sin(phi) * ry - rx),
+                  w * (std::sin(phi) * rx + std::cos(phi) * ry - ry - s * g0)};
+            });
         qmin = std::min(qmin, motion.move(n).min_scaled_jacobian);
         if (reached)
           *reached = s;
@@ -174,7 +173,8 @@ TEST_CASE("ALE: affine boundary motion is extended exactly, without drift, "
     fsai::ale::MeshMotion motion(mesh, V, {all, {}, {}}, p);
     const std::vector<double> X = V->tabulate_dof_coordinates(false);
     // d(X, t) = G(t) X + c(t): affine, so the extension is exact
-    auto d = [](double x, double y, double t) -> std::array<double, 2> {
+    auto d = [](double x, double y, double t) -> std::array<double, 2>
+    {
       return {0.1 * t * x - 0.05 * t * t * y + 0.01 * t,
               0.03 * t * x + 0.2 * t * y};
     };
@@ -209,9 +209,10 @@ TEST_CASE("ALE: affine boundary motion is extended exactly, without drift, "
       mo->advance();
     }
     // Back to d = 0: the geometry returns to X exactly (no drift)
-    set_interface(*mo, X, [](double, double) -> std::array<double, 2> {
-      return {0, 0};
-    });
+    set_interface(*mo, X,
+                  [](double, double) -> std::array<double, 2> {
+                    return {0, 0};
+                  });
     mo->move(1.0);
     double drift = 0;
     auto x = mesh->geometry().x();

@@ -4,11 +4,11 @@
 // structure-mass ratios of the interface modes, fixed point
 // x* = (I + D)⁻¹ b. The ratios decay with the mode number as the added-mass
 // operator's eigenvalues do with the wavenumber (∝ 1/k, Causin, Gerbeau &
-// Nobile 2005): D_i = 3/(i + 1), i = 0..39, so two modes have D > 1. Explicit coupling (one Gauss–Seidel pass, ω = 1)
-// amplifies the modes with D > 1 (the added-mass instability); Aitken and
-// IQN-ILS must converge, IQN-ILS in fewer iterations, and reusing past
-// steps must cut IQN-ILS's iterations further. The vector is distributed
-// over the ranks like an interface vector.
+// Nobile 2005): D_i = 3/(i + 1), i = 0..39, so two modes have D > 1. Explicit
+// coupling (one Gauss–Seidel pass, ω = 1) amplifies the modes with D > 1 (the
+// added-mass instability); Aitken and IQN-ILS must converge, IQN-ILS in fewer
+// iterations, and reusing past steps must cut IQN-ILS's iterations further. The
+// vector is distributed over the ranks like an interface vector.
 #include "catch.h"
 #include <common/log.h>
 #include <coupling/FixedPointCoupling.h>
@@ -59,8 +59,7 @@ TEST_CASE("Coupling: explicit iteration diverges on the added-mass model, "
   std::map<std::string, fsai::coupling::StepReport> rep;
   for (std::string method : {"constant", "aitken", "iqn-ils"})
   {
-    fsai::coupling::FixedPointCoupling loop(MPI_COMM_WORLD,
-                                            params(method, 60));
+    fsai::coupling::FixedPointCoupling loop(MPI_COMM_WORLD, params(method, 60));
     std::vector<double> x(m.b.size(), 0.0);
     rep[method] = loop.step(0.0, x, m.map(1.0));
     double err = 0;

@@ -7,6 +7,8 @@
 #include <dolfinx/mesh/generation.h>
 #include <dolfinx/mesh/utils.h>
 #include <fluid/FluidSolver.h>
+#include <io/PointProbes.h>
+#include <mesh/benchmarks.h>
 #include <xtensor/xview.hpp>
 
 namespace
@@ -356,4 +358,50 @@ TEST_CASE("2D channel start-up: the iterative solvers (AMG and ILU velocity "
                     k == 1 ? "amg" : "ilu", g[0] / g[1]);
     CHECK(g[0] / g[1] < 1e-6);
   }
+}
+
+TEST_CASE("Where P1/P1 fails: without PSPG the DFG 2D-1 pressure oscillates "
+          "(quantified by |grad p|) and the pressure drop degrades",
+          "[fluid]")
+{
+  // Level 1 of fsai_cylinder (h = 0.02 m, cylinder h/8), Re = 20, steady
+  auto m = fsai::mesh::dfg_channel(MPI_COMM_WORLD, 0.02, 0.0025);
+  fsai::fluid::FluidBoundaries b;
+  b.inlet_dirichlet = m.facet_tags->find(m.facet_tag("inlet"));
+  b.outlet = m.facet_tags->find(m.facet_tag("outlet"));
+  b.walls = m.facet_tags->find(m.facet_tag("walls"));
+  auto cyl = m.facet_tags->find(m.facet_tag("cylinder"));
+  b.walls.insert(b.walls.end(), cyl.begin(), cyl.end());
+  fsai::io::PointProbes taps(m.mesh, {{0.15, 0.2, 0}, {0.25, 0.2, 0}});
+  std::map<bool, std::pair<double, double>> out; // pspg -> (|∇p|, Δp)
+  for (bool pspg : {true, false})
+  {
+    fsai::fluid::FluidParameters p;
+    p.rho = 1.0;
+    p.mu = 1e-3;
+    p.pspg = pspg;
+    fsai::fluid::FluidSolver flow(m.mesh, b, p, 1.0);
+    const double H = 0.41, Um = 0.3;
+    flow.inlet_velocity().interpolate(
+        [&](auto& x) -> xt::xarray<double>
+        {
+          xt::xarray<double> u
+              = xt::zeros<double>({std::size_t(2), x.shape(1)});
+          for (std::size_t i = 0; i < x.shape(1); ++i)
+            u(0, i) = 4 * Um * x(1, i) * (H - x(1, i)) / (H * H);
+          return u;
+        });
+    flow.solve_steady(100);
+    auto pr = taps.values(*flow.pressure());
+    out[pspg] = {flow.pressure_gradient_norm(), pr[0] - pr[1]};
+  }
+  const double dp_ref = 0.11752016697;
+  fsai::log::info("DFG 2D-1 level 1: |grad p| {:.3f} with PSPG, {:.3f} "
+                  "without; dp error {:+.2f} % vs {:+.2f} %",
+                  out[true].first, out[false].first,
+                  100 * (out[true].second / dp_ref - 1),
+                  100 * (out[false].second / dp_ref - 1));
+  CHECK(out[false].first > 1.5 * out[true].first);
+  CHECK(std::abs(out[false].second / dp_ref - 1)
+        > 2 * std::abs(out[true].second / dp_ref - 1));
 }

@@ -116,9 +116,8 @@ fsai::ale::mesh_quality(const mesh::Mesh& mesh,
   {
     auto v = cell_vertices(mesh, x, c);
     auto [det, q] = simplex_jacobian(v, tdim);
-    const double det0 = simplex_jacobian(cell_vertices(mesh, reference_x, c),
-                                         tdim)
-                            .first;
+    const double det0
+        = simplex_jacobian(cell_vertices(mesh, reference_x, c), tdim).first;
     if (det * det0 <= 0)
       q = -q; // inverted relative to the reference orientation
     if (q < loc.q)
@@ -175,15 +174,15 @@ fsai::ale::MeshMotion::MeshMotion(std::shared_ptr<mesh::Mesh> mesh,
   _history = 1; // the reference configuration, at rest
 
   // Size factor (V_max / V_K)^χ from the reference cell volumes
-  auto Q = std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(ale_forms::functionspace_a(tdim, 1), "k", mesh));
+  auto Q = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+      ale_forms::functionspace_a(tdim, 1), "k", mesh));
   _k = fn(Q, "ale_stiffening");
   _vol0.resize(ncells);
   double vmax = 0;
   for (std::int32_t c = 0; c < ncells; ++c)
   {
-    _vol0[c] = std::abs(
-        simplex_jacobian(cell_vertices(*mesh, _X, c), tdim).first);
+    _vol0[c]
+        = std::abs(simplex_jacobian(cell_vertices(*mesh, _X, c), tdim).first);
     vmax = std::max(vmax, _vol0[c]);
   }
   MPI_Allreduce(MPI_IN_PLACE, &vmax, 1, MPI_DOUBLE, MPI_MAX, mesh->comm());
@@ -287,8 +286,7 @@ fsai::ale::MeshQuality fsai::ale::MeshMotion::move(double t)
       assemble();
       _solver.set_operator(_A.mat());
     }
-    la::Vector<double> b(_V->dofmap()->index_map,
-                         _V->dofmap()->index_map_bs());
+    la::Vector<double> b(_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
     b.set(0.0);
     fem::apply_lifting<double>(
         b.mutable_array(),
@@ -319,10 +317,9 @@ fsai::ale::MeshQuality fsai::ale::MeshMotion::move(double t)
         "ALE mesh motion ({}{}): {} at t = {:.6g} s near ({:.4g}, {:.4g}, "
         "{:.4g}) m, min scaled Jacobian {:.3g} (limit {:g})",
         _par.method,
-        _par.stiffening == "none"
-            ? ""
-            : fmt::format(", {} stiffening, chi {:g}", _par.stiffening,
-                          _par.chi),
+        _par.stiffening == "none" ? ""
+                                  : fmt::format(", {} stiffening, chi {:g}",
+                                                _par.stiffening, _par.chi),
         q.min_scaled_jacobian <= 0 ? "cell inverted" : "cell quality too low",
         t, q.where[0], q.where[1], q.where[2], q.min_scaled_jacobian,
         _par.min_quality));
@@ -330,8 +327,7 @@ fsai::ale::MeshQuality fsai::ale::MeshMotion::move(double t)
   return q;
 }
 //-----------------------------------------------------------------------------
-void fsai::ale::MeshMotion::velocity(fem::Function<double>& w,
-                                     double dt) const
+void fsai::ale::MeshMotion::velocity(fem::Function<double>& w, double dt) const
 {
   auto d = _d->x()->array();
   auto out = w.x()->mutable_array();

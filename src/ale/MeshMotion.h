@@ -41,7 +41,7 @@ struct MeshMotionParameters
   /// stiffen, so the compression spreads over the gap), found by fixed-point
   /// iterations from the previous move's d
   std::string stiffening = "none";
-  double chi = 0.5; ///< stiffening exponent χ
+  double chi = 0.5;   ///< stiffening exponent χ
   int iterations = 6; ///< "jacobian": fixed-point iterations per move
   /// λ_m/μ_m of the pseudo-elastic medium (ν_m = λ/(2(λ+μ)) in 3D)
   double lambda = 1.0;
@@ -68,8 +68,7 @@ struct MeshMotionBoundaries
 class MeshInvertedError : public std::runtime_error
 {
 public:
-  explicit MeshInvertedError(const std::string& what)
-      : std::runtime_error(what)
+  explicit MeshInvertedError(const std::string& what) : std::runtime_error(what)
   {
   }
 };
@@ -133,14 +132,14 @@ private:
   std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;
   MeshMotionParameters _par;
-  std::vector<double> _X;             // reference geometry coordinates
+  std::vector<double> _X;              // reference geometry coordinates
   std::vector<std::int32_t> _node_dof; // geometry node -> P1 dof (block)
   std::shared_ptr<dolfinx::fem::Function<double>> _d, _d_interface, _k;
-  std::vector<double> _d_n, _d_nn; // accepted history
+  std::vector<double> _d_n, _d_nn;    // accepted history
   std::vector<double> _vol0, _k_size; // reference cell volumes, size factor
   std::vector<double> _J; // relaxed cell volume ratios (jacobian stiffening)
-  void assemble(); // k from the stiffening model, then A (reference mesh)
-  int _history = 0;                // accepted steps available (0, 1, 2)
+  void assemble();  // k from the stiffening model, then A (reference mesh)
+  int _history = 0; // accepted steps available (0, 1, 2)
   std::shared_ptr<dolfinx::fem::Form<double>> _a;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
   dolfinx::la::petsc::Matrix _A;

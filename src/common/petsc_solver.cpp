@@ -9,13 +9,15 @@ std::string fsai::common::lu_package(MPI_Comm comm, int tdim)
   return size == 1 and tdim == 2 ? MATSOLVERPETSC : MATSOLVERMUMPS;
 }
 //-----------------------------------------------------------------------------
-void fsai::common::configure_direct_solver(KSP ksp, MPI_Comm comm, int tdim)
+void fsai::common::configure_direct_solver(KSP ksp, MPI_Comm comm, int tdim,
+                                           bool saddle_point)
 {
   KSPSetType(ksp, KSPPREONLY);
   PC pc;
   KSPGetPC(ksp, &pc);
   PCSetType(pc, PCLU);
-  PCFactorSetMatSolverType(pc, lu_package(comm, tdim).c_str());
+  PCFactorSetMatSolverType(pc, saddle_point ? MATSOLVERMUMPS
+                                            : lu_package(comm, tdim).c_str());
   PCFactorSetZeroPivot(pc, 0.0);
 }
 //-----------------------------------------------------------------------------

@@ -17,5 +17,8 @@ std::string lu_package(MPI_Comm comm, int tdim);
 /// well-posed matrices of soft tissue or r-weighted axisymmetric forms.
 /// These are defaults set on this KSP: call set_from_options afterwards
 /// so that the command line (-prefix_pc_type ...) still overrides them.
-void configure_direct_solver(KSP ksp, MPI_Comm comm, int tdim);
+/// `saddle_point`: always MUMPS, which pivots; PETSc's LU does not, and a
+/// zero diagonal block (P1/P1 without PSPG) makes it fail.
+void configure_direct_solver(KSP ksp, MPI_Comm comm, int tdim,
+                             bool saddle_point = false);
 } // namespace fsai::common

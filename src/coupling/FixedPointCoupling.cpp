@@ -39,8 +39,8 @@ fsai::coupling::FixedPointCoupling::FixedPointCoupling(
     _csv = std::make_unique<io::CsvWriter>(
         comm, csv_path,
         std::vector<std::string>{"t_s", "iterations", "residual",
-                                 "first_residual", "residual_abs",
-                                 "converged", "omega"});
+                                 "first_residual", "residual_abs", "converged",
+                                 "omega"});
   }
 }
 //-----------------------------------------------------------------------------

@@ -31,7 +31,7 @@ namespace fsai::coupling
 struct CouplingParameters
 {
   AcceleratorParameters accelerator;
-  double tol = 1e-6;      ///< relative interface residual
+  double tol = 1e-6;       ///< relative interface residual
   int max_iterations = 50; ///< per time step (1: explicit coupling)
   /// What a step that misses `tol` in `max_iterations` does: "error"
   /// (throws) or "warn" (logs and goes on)
@@ -45,8 +45,8 @@ struct CouplingParameters
 struct StepReport
 {
   int iterations = 0;
-  double residual = 0;      ///< relative residual of the last iteration
-  double first_residual = 0; ///< relative residual of the first iteration
+  double residual = 0;           ///< relative residual of the last iteration
+  double first_residual = 0;     ///< relative residual of the first iteration
   double residual_abs = 0;       ///< |H(x) − x| of the last iteration
   double first_residual_abs = 0; ///< |H(x) − x| of the first iteration
   bool converged = false;
@@ -56,8 +56,8 @@ class FixedPointCoupling
 {
 public:
   /// The interface map: fills Hx = H(x) (rank-local parts)
-  using Map = std::function<void(std::span<const double> x,
-                                 std::span<double> Hx)>;
+  using Map
+      = std::function<void(std::span<const double> x, std::span<double> Hx)>;
 
   /// @param[in] csv_path Per-step log (empty: none)
   FixedPointCoupling(MPI_Comm comm, const CouplingParameters& p,

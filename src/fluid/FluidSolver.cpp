@@ -177,7 +177,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   PC pc;
   KSPGetPC(ksp, &pc);
   if (p.solver == "direct")
-    common::configure_direct_solver(ksp, mesh->comm(), tdim);
+    common::configure_direct_solver(ksp, mesh->comm(), tdim, true);
   else
   {
     // Block-triangular Schur preconditioner; PSPG makes the pressure block
