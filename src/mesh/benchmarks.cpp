@@ -4,6 +4,8 @@
 #include "gmsh_model.h"
 #include <cmath>
 #include <gmsh.h>
+#include <map>
+#include <set>
 
 fsai::mesh::MeshData fsai::mesh::turek_hron_beam(MPI_Comm comm, double h)
 {
@@ -123,4 +125,119 @@ fsai::mesh::MeshData fsai::mesh::dfg_channel(MPI_Comm comm, double h,
         gmsh::option::setNumber("Mesh.Algorithm", 6);
         gmsh::model::mesh::generate(2);
       });
+}
+//-----------------------------------------------------------------------------
+fsai::mesh::FluidSolidMeshes fsai::mesh::turek_hron_fsi(MPI_Comm comm, double h,
+                                                        double h_i)
+{
+  fsai::require(h > 0 and h <= 0.1, "Turek-Hron FSI: mesh size h",
+                "in (0, 0.1] m", h);
+  fsai::require(h_i > 2e-4 and h_i <= std::min(h, 0.01),
+                "Turek-Hron FSI: interface mesh size",
+                "in (2e-4, min(h, 0.01)] m", h_i);
+  auto parts = build_parts_with_gmsh(
+      comm, 2,
+      [&]()
+      {
+        namespace occ = gmsh::model::occ;
+        gmsh::model::add("turek_hron_fsi");
+        const double xc = 0.2, yc = 0.2, r = 0.05;
+        const int channel = occ::addRectangle(0, 0, 0, 2.5, 0.41);
+        const int disk = occ::addDisk(xc, yc, 0, r, r);
+        const int beam = occ::addRectangle(0.2, 0.19, 0, 0.4, 0.02);
+        const int pA = occ::addPoint(0.6, 0.2, 0);
+        gmsh::vectorpair out;
+        std::vector<gmsh::vectorpair> map;
+        occ::fragment({{2, channel}}, {{2, disk}, {2, beam}, {0, pA}}, out,
+                      map);
+        occ::synchronize();
+        // Sort the fragments: inside the cylinder (removed), beam, fluid
+        std::vector<int> fluid, solid;
+        gmsh::vectorpair inside;
+        for (auto [d, t] : out)
+        {
+          if (d != 2)
+            continue;
+          double cx, cy, cz, area;
+          occ::getCenterOfMass(d, t, cx, cy, cz);
+          occ::getMass(d, t, area);
+          if (std::hypot(cx - xc, cy - yc) < r)
+            inside.push_back({d, t});
+          else if (area < 0.01) // the beam, 0.35 x 0.02 m² less its clamp
+            solid.push_back(t);
+          else
+            fluid.push_back(t);
+        }
+        occ::remove(inside, true);
+        occ::synchronize();
+        if (fluid.size() != 1 or solid.size() != 1)
+          throw std::runtime_error("Turek-Hron FSI: unexpected fragments");
+
+        auto curves = [](int surface)
+        {
+          gmsh::vectorpair b;
+          gmsh::model::getBoundary({{2, surface}}, b, false, false, false);
+          std::set<int> c;
+          for (auto [d, t] : b)
+            c.insert(std::abs(t));
+          return c;
+        };
+        const std::set<int> cf = curves(fluid[0]), cs = curves(solid[0]);
+        std::map<std::string, std::vector<int>> groups;
+        for (int c : cf)
+        {
+          std::vector<double> lo, hi, m;
+          gmsh::model::getParametrizationBounds(1, c, lo, hi);
+          gmsh::model::getValue(1, c, {0.5 * (lo[0] + hi[0])}, m);
+          std::string g;
+          if (cs.count(c))
+            g = "interface";
+          else if (std::abs(std::hypot(m[0] - xc, m[1] - yc) - r) < 1e-6)
+            g = "cylinder";
+          else if (m[0] < 1e-9)
+            g = "inlet";
+          else if (m[0] > 2.5 - 1e-9)
+            g = "outlet";
+          else
+            g = "walls";
+          groups[g].push_back(c);
+        }
+        for (int c : cs)
+          if (!cf.count(c))
+            groups["clamped"].push_back(c);
+        int id = 1;
+        for (auto& [name, cs_] : groups)
+        {
+          gmsh::model::addPhysicalGroup(1, cs_, id);
+          gmsh::model::setPhysicalName(1, id++, name);
+        }
+        gmsh::model::addPhysicalGroup(2, fluid, 1);
+        gmsh::model::setPhysicalName(2, 1, "fluid");
+        gmsh::model::addPhysicalGroup(2, solid, 2);
+        gmsh::model::setPhysicalName(2, 2, "solid");
+
+        // Size: h_i on the cylinder and the beam, growing to h at 0.3 m
+        std::vector<double> near;
+        for (auto* g :
+             {&groups["cylinder"], &groups["interface"], &groups["clamped"]})
+          near.insert(near.end(), g->begin(), g->end());
+        namespace field = gmsh::model::mesh::field;
+        const int fd = field::add("Distance");
+        field::setNumbers(fd, "CurvesList", near);
+        field::setNumber(fd, "NumPointsPerCurve", 200);
+        const int ft = field::add("Threshold");
+        field::setNumber(ft, "InField", fd);
+        field::setNumber(ft, "SizeMin", h_i);
+        field::setNumber(ft, "SizeMax", h);
+        field::setNumber(ft, "DistMin", 0.0);
+        field::setNumber(ft, "DistMax", 0.3);
+        field::setAsBackgroundMesh(ft);
+        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+        gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+        gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+        gmsh::option::setNumber("Mesh.Algorithm", 6);
+        gmsh::model::mesh::generate(2);
+      },
+      {"fluid", "solid"});
+  return {std::move(parts[0]), std::move(parts[1])};
 }

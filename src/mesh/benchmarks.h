@@ -25,3 +25,20 @@ namespace fsai::mesh
 /// "cylinder" (4); cell group "fluid" (1).
 MeshData dfg_channel(MPI_Comm comm, double h, double h_cyl);
 } // namespace fsai::mesh
+
+namespace fsai::mesh
+{
+/// The Turek & Hron (2006) FSI geometry (turek_hron_setup.csv) meshed as
+/// one gmsh model with two parts that share the interface nodes: the
+/// channel [0, 2.5] x [0, 0.41] m without the cylinder (r = 0.05 m at
+/// (0.2, 0.2)) and the beam [0.2, 0.6] x [0.19, 0.21] m outside it. Size
+/// h_i on the cylinder, the beam and its interface, growing to h at 0.3 m.
+/// fluid: facet groups "inlet", "outlet", "walls", "cylinder", "interface";
+/// cell group "fluid". solid: facet groups "clamped", "interface"; cell
+/// group "solid". Point A = (0.6, 0.2) is a vertex of both.
+struct FluidSolidMeshes
+{
+  MeshData fluid, solid;
+};
+FluidSolidMeshes turek_hron_fsi(MPI_Comm comm, double h, double h_i);
+} // namespace fsai::mesh

@@ -12,6 +12,7 @@
 #include <dolfinx/mesh/utils.h>
 #include <filesystem>
 #include <gmsh.h>
+#include <set>
 #include <unordered_map>
 
 using namespace dolfinx;
@@ -205,8 +206,9 @@ fsai::mesh::GmshSession::~GmshSession()
     gmsh::finalize();
 }
 //-----------------------------------------------------------------------------
-fsai::mesh::MeshData fsai::mesh::model_to_mesh(MPI_Comm comm, int root,
-                                               int gdim)
+fsai::mesh::MeshData
+fsai::mesh::model_to_mesh(MPI_Comm comm, int root, int gdim,
+                          const std::vector<std::string>& cell_groups)
 {
   if (gdim != 2 and gdim != 3)
     throw std::runtime_error("model_to_mesh: gdim must be 2 or 3");
@@ -250,6 +252,32 @@ fsai::mesh::MeshData fsai::mesh::model_to_mesh(MPI_Comm comm, int root,
                                    "triangles/tetrahedra are supported");
         cells = to_dolfinx(c, cell_type, index);
         cell_values = c.tags;
+        if (!cell_groups.empty())
+        {
+          // Only the cells of the named groups (one part of a model whose
+          // parts share nodes on their interfaces)
+          std::set<std::int32_t> keep;
+          for (auto& name : cell_groups)
+            keep.insert(lookup(c.names, "cell", name));
+          std::vector<std::int64_t> kc;
+          std::vector<std::int32_t> kv;
+          for (std::size_t i = 0; i < cell_values.size(); ++i)
+          {
+            if (keep.count(cell_values[i]))
+            {
+              kc.insert(kc.end(), cells.begin() + i * nv_cell,
+                        cells.begin() + (i + 1) * nv_cell);
+              kv.push_back(cell_values[i]);
+            }
+          }
+          cells = std::move(kc);
+          cell_values = std::move(kv);
+          std::map<std::string, int> kept_names;
+          for (auto& [n, t] : c.names)
+            if (keep.count(t))
+              kept_names[n] = t;
+          c.names = kept_names;
+        }
         cell_names = pack_names(c.names);
 
         TaggedEntities f = tagged_entities(tdim - 1);
@@ -273,13 +301,29 @@ fsai::mesh::MeshData fsai::mesh::model_to_mesh(MPI_Comm comm, int root,
             renum[n] = used++;
           n = renum[n];
         }
-        for (std::int64_t& n : facets)
+        // Tagged facets: those of another part (a node outside this part's
+        // cells) are dropped; without parts that is a broken model
+        std::vector<std::int64_t> kf;
+        std::vector<std::int32_t> kfv;
+        for (std::size_t f = 0; f < facet_values.size(); ++f)
         {
-          if (renum[n] < 0)
+          bool inside = true;
+          for (int i = 0; i < nv_facet; ++i)
+            inside = inside and renum[facets[f * nv_facet + i]] >= 0;
+          if (!inside and cell_groups.empty())
+          {
             throw std::runtime_error("gmsh model: a tagged facet has a node "
                                      "that belongs to no cell");
-          n = renum[n];
+          }
+          if (inside)
+          {
+            for (int i = 0; i < nv_facet; ++i)
+              kf.push_back(renum[facets[f * nv_facet + i]]);
+            kfv.push_back(facet_values[f]);
+          }
         }
+        facets = std::move(kf);
+        facet_values = std::move(kfv);
         std::vector<double> xc(used * gdim);
         for (std::size_t i = 0; i < renum.size(); ++i)
           if (renum[i] >= 0)
@@ -322,6 +366,21 @@ fsai::mesh::build_with_gmsh(MPI_Comm comm, int gdim,
   run_on_root(comm, 0, build, "gmsh: ");
   timer.stop();
   return model_to_mesh(comm, 0, gdim);
+}
+//-----------------------------------------------------------------------------
+std::vector<fsai::mesh::MeshData>
+fsai::mesh::build_parts_with_gmsh(MPI_Comm comm, int gdim,
+                                  const std::function<void()>& build,
+                                  const std::vector<std::string>& parts)
+{
+  common::ScopedTimer timer("mesh: gmsh");
+  GmshSession session(comm);
+  run_on_root(comm, 0, build, "gmsh: ");
+  timer.stop();
+  std::vector<MeshData> out;
+  for (auto& part : parts)
+    out.push_back(model_to_mesh(comm, 0, gdim, {part}));
+  return out;
 }
 //-----------------------------------------------------------------------------
 fsai::mesh::MeshData fsai::mesh::from_geo_file(MPI_Comm comm,

@@ -6,6 +6,7 @@
 #include <functional>
 #include <mpi.h>
 #include <string>
+#include <vector>
 
 namespace fsai::mesh
 {
@@ -34,7 +35,11 @@ private:
 /// @param[in] comm Communicator of the mesh (collective)
 /// @param[in] root Rank holding the gmsh model
 /// @param[in] gdim Geometric dimension (2 or 3)
-MeshData model_to_mesh(MPI_Comm comm, int root, int gdim);
+/// @param[in] cell_groups If not empty, only the cells of these physical
+///   groups (one part of a multi-region model, e.g. "fluid"), and the
+///   tagged facets whose nodes all belong to them
+MeshData model_to_mesh(MPI_Comm comm, int root, int gdim,
+                       const std::vector<std::string>& cell_groups = {});
 
 /// Run `build` (gmsh API calls that create and mesh a model) on rank 0
 /// inside a GmshSession, then distribute the mesh with model_to_mesh. An
@@ -42,6 +47,14 @@ MeshData model_to_mesh(MPI_Comm comm, int root, int gdim);
 /// waiting).
 MeshData build_with_gmsh(MPI_Comm comm, int gdim,
                          const std::function<void()>& build);
+
+/// As build_with_gmsh, for a model of several parts meshed together (so
+/// they share the nodes of their interfaces): one distributed mesh per
+/// named cell group, in the order of `parts`
+std::vector<MeshData>
+build_parts_with_gmsh(MPI_Comm comm, int gdim,
+                      const std::function<void()>& build,
+                      const std::vector<std::string>& parts);
 
 /// Build a mesh from a gmsh `.geo` file: the file is opened and meshed in
 /// dimension `gdim` on rank 0 and distributed.
