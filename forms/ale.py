@@ -17,7 +17,7 @@
 import ufl
 from ufl import div, dx, grad, inner, sym
 
-from fsai_ufl import domain
+from fsai_ufl import dim, domain
 
 mesh = domain()
 V = ufl.FunctionSpace(mesh, ufl.VectorElement("Lagrange", mesh.ufl_cell(), 1))
@@ -33,4 +33,9 @@ a = k * ((1 - elastic) * inner(grad(d), grad(z))
          + elastic * (2 * inner(sym(grad(d)), sym(grad(z)))
                       + lmbda * div(d) * div(z))) * dx
 
-forms = [a]
+# Lumped interface mass ∫_Γ z_k ds (ds(1) bound to the interface facets):
+# nodal forces / lumped mass = the nodal traction handed to the solid
+e = ufl.Constant(mesh, shape=(dim(),))
+lumped = inner(e, z) * ufl.ds(1)
+
+forms = [a, lumped]

@@ -39,7 +39,9 @@ struct AcceleratorParameters
   std::string method = "iqn-ils"; ///< constant | aitken | iqn-ils
   double omega = 0.5;   ///< constant ω; first ω of Aitken and IQN-ILS
   int reuse = 8;        ///< IQN-ILS: past time steps whose columns are kept
-  double filter = 1e-8; ///< IQN-ILS: QR1 filter ε
+  double filter = 1e-3; ///< IQN-ILS: QR1 filter ε (noise in H makes
+                        ///< nearly dependent columns harmful: 1e-8
+                        ///< diverged on Turek-Hron FSI1)
 
   void bind(fsai::common::Parameters& p);
   void validate() const;

@@ -12,6 +12,8 @@ void fsai::coupling::CouplingParameters::bind(fsai::common::Parameters& p)
 {
   accelerator.bind(p);
   p.add("coupling.tol", tol, "relative interface residual tolerance");
+  p.add("coupling.atol", atol,
+        "absolute interface residual tolerance (0: off)");
   p.add("coupling.max_iterations", max_iterations,
         "coupling iterations per step (1: explicit)");
   p.add_choice("coupling.on_failure", on_failure, {"error", "warn"},
@@ -22,6 +24,7 @@ void fsai::coupling::CouplingParameters::validate() const
 {
   accelerator.validate();
   fsai::require(tol > 0 and tol < 1, "--coupling.tol", "in (0, 1)", tol);
+  fsai::require(atol >= 0, "--coupling.atol", ">= 0", atol);
   fsai::require(max_iterations >= 1 and max_iterations <= 1000,
                 "--coupling.max_iterations", "in [1, 1000]", max_iterations);
   fsai::require(on_failure == "error" or on_failure == "warn",
@@ -72,7 +75,7 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
     rep.iterations = k;
     if (k == 1)
       rep.first_residual = rep.residual, rep.first_residual_abs = nr;
-    if (rep.residual <= _par.tol)
+    if (rep.residual <= _par.tol or nr <= _par.atol)
     {
       rep.converged = true;
       break;

@@ -31,7 +31,11 @@ namespace fsai::coupling
 struct CouplingParameters
 {
   AcceleratorParameters accelerator;
-  double tol = 1e-6;       ///< relative interface residual
+  double tol = 1e-6; ///< relative interface residual
+  /// Absolute interface residual that also counts as converged (0: off):
+  /// while the interface barely moves (a start-up ramp) the relative
+  /// measure would ask for more than the sub-solvers' own accuracy
+  double atol = 0.0;
   int max_iterations = 50; ///< per time step (1: explicit coupling)
   /// What a step that misses `tol` in `max_iterations` does: "error"
   /// (throws) or "warn" (logs and goes on)

@@ -444,6 +444,52 @@ fsai::fluid::FluidSolver::force(std::span<const std::int32_t> facets)
   return {-global[0], -global[1], -global[2]};
 }
 //-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::nodal_forces(
+    std::span<const std::int32_t> facets, fem::Function<double>& F)
+{
+  common::ScopedTimer timer("fluid: force");
+  la::Vector<double> r(_W->dofmap()->index_map, 1);
+  r.set(0.0);
+  fem::assemble_vector(r.mutable_array(), *_F);
+  r.scatter_rev(std::plus<double>());
+  const int tdim = _W->mesh()->topology().dim();
+  const int bs = _V->dofmap()->index_map_bs();
+  const std::int32_t owned = _V->dofmap()->index_map->size_local();
+  auto f = F.x()->mutable_array();
+  std::fill(f.begin(), f.end(), 0.0);
+  for (std::int32_t d : fem::locate_dofs_topological(*_V, tdim - 1, facets))
+  {
+    if (d < owned)
+      for (int k = 0; k < bs; ++k)
+        f[bs * d + k] = -r.array()[_map_v[bs * d + k]];
+  }
+  F.x()->scatter_fwd();
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::save_state()
+{
+  auto copy = [](auto& f) {
+    return std::vector<double>(f->x()->array().begin(), f->x()->array().end());
+  };
+  _saved = {copy(_up), copy(_v), copy(_p), copy(_v_n), copy(_v_nn), _t,
+            _steps};
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::restore_state()
+{
+  if (_saved.up.empty())
+    throw std::runtime_error("fluid: restore_state() without save_state()");
+  auto back = [](const std::vector<double>& a, auto& f)
+  { std::copy(a.begin(), a.end(), f->x()->mutable_array().begin()); };
+  back(_saved.up, _up);
+  back(_saved.v, _v);
+  back(_saved.p, _p);
+  back(_saved.v_n, _v_n);
+  back(_saved.v_nn, _v_nn);
+  _t = _saved.t;
+  _steps = _saved.steps;
+}
+//-----------------------------------------------------------------------------
 double fsai::fluid::FluidSolver::flow_rate(std::span<const std::int32_t> facets)
 {
   const int tdim = _W->mesh()->topology().dim();

@@ -96,6 +96,14 @@ public:
   /// residual of the weak form at the velocity dofs there) [N per unit
   /// depth in 2D]
   std::array<double, 3> force(std::span<const std::int32_t> facets);
+  /// The same per velocity dof: F (velocity space) is set to the nodal
+  /// forces on the dofs of `facets` and zero elsewhere (FSI load transfer)
+  void nodal_forces(std::span<const std::int32_t> facets,
+                    dolfinx::fem::Function<double>& F);
+  /// Keep / go back to the state at the start of the step (coupling
+  /// iterations repeat a step)
+  void save_state();
+  void restore_state();
   /// Flow rate ∫ v·n ds over `facets` (outward n)
   double flow_rate(std::span<const std::int32_t> facets);
 
@@ -128,6 +136,12 @@ private:
   void configure_blocks(); // fieldsplit block solvers, at the first solve
   bool _configure_blocks = false;
   void split();
+  struct State
+  {
+    std::vector<double> up, v, p, v_n, v_nn;
+    double t = 0;
+    int steps = 0;
+  } _saved;
 
   FluidParameters _par;
   double _dt, _t = 0.0;
