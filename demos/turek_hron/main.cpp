@@ -48,6 +48,7 @@ struct BenchmarkParameters
   double dt = 0.05;
   double t_end = 6.0;
   int write_every = 10;
+  bool check_result = false;
 
   void bind(fsai::common::Parameters& p)
   {
@@ -58,6 +59,9 @@ struct BenchmarkParameters
     p.add("dt", dt, "time step [s]");
     p.add("t_end", t_end, "simulated time [s]");
     p.add("write_every", write_every, "XDMF output every N steps (0: none)");
+    p.add("check-result", check_result,
+          "FSI1: fail unless uy(A) within 2 %, ux(A) 5 %, drag 1 %, lift 3 % "
+          "of the reference at t_end");
   }
   void validate() const
   {
@@ -74,10 +78,10 @@ struct Reference
 };
 // turek_hron_setup.csv / turek_hron_results.csv (FeatFlow finest; the
 // periodic cases FSI2/FSI3 are reported as means only here)
-const std::map<std::string, Reference> references
-    = {{"FSI1", {0.2, 1000, 1.4e6, 2.270493e-5, 8.208773e-4, 14.29426, 0.7637460}},
-       {"FSI2", {1.0, 10000, 1.4e6, NAN, NAN, NAN, NAN}},
-       {"FSI3", {2.0, 1000, 5.6e6, NAN, NAN, NAN, NAN}}};
+const std::map<std::string, Reference> references = {
+    {"FSI1", {0.2, 1000, 1.4e6, 2.270493e-5, 8.208773e-4, 14.29426, 0.7637460}},
+    {"FSI2", {1.0, 10000, 1.4e6, NAN, NAN, NAN, NAN}},
+    {"FSI3", {2.0, 1000, 5.6e6, NAN, NAN, NAN, NAN}}};
 } // namespace
 
 int main(int argc, char* argv[])
@@ -151,10 +155,9 @@ int main(int argc, char* argv[])
         // (the interface is listed last in MeshMotion: it wins at the two
         // points where the beam meets the cylinder, where it is 0 anyway)
         fsai::ale::MeshMotion motion(fm.mesh, flow.velocity_space(), mb, ap);
-        fsai::coupling::InterfaceMap imap(*flow.velocity_space(), f_if,
-                                          *solid.space(),
-                                          sm.facet_tags->find(
-                                              sm.facet_tag("interface")));
+        fsai::coupling::InterfaceMap imap(
+            *flow.velocity_space(), f_if, *solid.space(),
+            sm.facet_tags->find(sm.facet_tag("interface")));
         fsai::coupling::PartitionedFsi fsi(flow, solid, motion, imap, f_if, cp,
                                            bp.output + "/coupling.csv");
         fsai::log::info("Turek-Hron {}: fluid {} dofs, solid {} dofs, {} "
@@ -186,8 +189,7 @@ int main(int argc, char* argv[])
                                  "lift_N_per_m", "coupling_iterations"});
         fsai::io::TimeSeriesWriter xdmf(
             bp.output + "/flow.xdmf",
-            {flow.velocity(), flow.pressure(),
-             motion.displacement()});
+            {flow.velocity(), flow.pressure(), motion.displacement()});
         const int n = int(std::lround(bp.t_end / bp.dt));
         fsai::io::Progress progress("step", n, 5.0);
         int its_total = 0, its_max = 0;
@@ -220,9 +222,9 @@ int main(int argc, char* argv[])
                         "(ref {:.4f}, {:+.2f}%), lift = {:.4f} (ref {:.4f}, "
                         "{:+.2f}%); coupling iterations mean {:.2f}, max {}; "
                         "{:.1f} s wall",
-                        bp.fsi_case, bp.t_end, uA[0], ref.ux, pct(uA[0], ref.ux),
-                        uA[1], ref.uy, pct(uA[1], ref.uy), F[0], ref.drag,
-                        pct(F[0], ref.drag), F[1], ref.lift,
+                        bp.fsi_case, bp.t_end, uA[0], ref.ux,
+                        pct(uA[0], ref.ux), uA[1], ref.uy, pct(uA[1], ref.uy),
+                        F[0], ref.drag, pct(F[0], ref.drag), F[1], ref.lift,
                         pct(F[1], ref.lift), double(its_total) / n, its_max,
                         wall);
         summary.set("ux_A", uA[0]);
@@ -233,5 +235,14 @@ int main(int argc, char* argv[])
         summary.set("coupling_iterations_max", its_max);
         summary.set("wall_per_sim_s", wall / bp.t_end);
         summary.write(bp.output + "/summary.json");
+        if (bp.check_result and bp.fsi_case == "FSI1"
+            and !(std::abs(pct(uA[1], ref.uy)) < 2
+                  and std::abs(pct(uA[0], ref.ux)) < 5
+                  and std::abs(pct(F[0], ref.drag)) < 1
+                  and std::abs(pct(F[1], ref.lift)) < 3))
+        {
+          throw std::runtime_error("check failed: FSI1 outside the acceptance "
+                                   "bands");
+        }
       });
 }

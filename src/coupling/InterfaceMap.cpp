@@ -65,8 +65,8 @@ fsai::coupling::InterfaceMap::InterfaceMap(
       _sowned.push_back(d);
   const std::vector<double> Xf = Vf.tabulate_dof_coordinates(false),
                             Xs = Vs.tabulate_dof_coordinates(false);
-  auto coords = [](const std::vector<double>& X,
-                   const std::vector<std::int32_t>& dofs)
+  auto coords
+      = [](const std::vector<double>& X, const std::vector<std::int32_t>& dofs)
   {
     std::vector<double> c;
     for (auto d : dofs)
@@ -102,8 +102,7 @@ fsai::coupling::InterfaceMap::InterfaceMap(
       for (std::size_t i = 0; i < nv; ++i)
         for (std::size_t j = i + 1; j < nv; ++j)
           for (auto n : {g[f * nv + i], g[f * nv + j]})
-            edges.insert(edges.end(), x.begin() + 3 * n,
-                         x.begin() + 3 * n + 3);
+            edges.insert(edges.end(), x.begin() + 3 * n, x.begin() + 3 * n + 3);
   }
   edges = allgather(_comm, edges);
   std::vector<double> mid;
@@ -132,9 +131,9 @@ fsai::coupling::InterfaceMap::InterfaceMap(
   }
 }
 //-----------------------------------------------------------------------------
-std::vector<double>
-fsai::coupling::InterfaceMap::gather(const fem::Function<double>& u,
-                                     const std::vector<std::int32_t>& owned) const
+std::vector<double> fsai::coupling::InterfaceMap::gather(
+    const fem::Function<double>& u,
+    const std::vector<std::int32_t>& owned) const
 {
   auto a = u.x()->array();
   std::vector<double> v;

@@ -51,7 +51,7 @@ public:
 private:
   MPI_Comm _comm;
   int _bs;
-  std::vector<std::int32_t> _fdofs, _sdofs;  // local interface dof blocks
+  std::vector<std::int32_t> _fdofs, _sdofs;   // local interface dof blocks
   std::vector<std::int32_t> _fowned, _sowned; // owned subsets, gather order
   // fluid dof i <- gathered solid value _f_from[i]
   std::vector<std::int64_t> _f_from;

@@ -1,9 +1,9 @@
 // Copyright (C) 2026 fsai developers
 #include "PartitionedFsi.h"
 #include "../common/timer.h"
-#include <fmt/format.h>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/utils.h>
+#include <fmt/format.h>
 #include <fsai_forms/ale.h>
 
 using namespace dolfinx;
@@ -111,9 +111,10 @@ fsai::coupling::StepReport fsai::coupling::PartitionedFsi::step(double t)
   std::vector<double> x(_x_n.size());
   for (std::size_t i = 0; i < x.size(); ++i)
     x[i] = _accepted >= 2 ? 2 * _x_n[i] - _x_nn[i] : _x_n[i];
-  StepReport rep = _loop.step(t, x,
-                              [&](std::span<const double> xi,
-                                  std::span<double> Hx) { evaluate(t, xi, Hx); });
+  StepReport rep
+      = _loop.step(t, x,
+                   [&](std::span<const double> xi, std::span<double> Hx)
+                   { evaluate(t, xi, Hx); });
   _motion.advance();
   _x_nn = _x_n;
   _x_n = x;

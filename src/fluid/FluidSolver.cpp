@@ -471,8 +471,7 @@ void fsai::fluid::FluidSolver::save_state()
   auto copy = [](auto& f) {
     return std::vector<double>(f->x()->array().begin(), f->x()->array().end());
   };
-  _saved = {copy(_up), copy(_v), copy(_p), copy(_v_n), copy(_v_nn), _t,
-            _steps};
+  _saved = {copy(_up), copy(_v), copy(_p), copy(_v_n), copy(_v_nn), _t, _steps};
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidSolver::restore_state()
