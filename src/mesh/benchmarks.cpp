@@ -241,3 +241,71 @@ fsai::mesh::FluidSolidMeshes fsai::mesh::turek_hron_fsi(MPI_Comm comm, double h,
       {"fluid", "solid"});
   return {std::move(parts[0]), std::move(parts[1])};
 }
+//-----------------------------------------------------------------------------
+fsai::mesh::FluidSolidMeshes fsai::mesh::channel_flap_3d(MPI_Comm comm,
+                                                         double h)
+{
+  fsai::require(h >= 0.01 and h <= 0.1, "3D flap channel: mesh size h",
+                "in [0.01, 0.1] m", h);
+  auto parts = build_parts_with_gmsh(
+      comm, 3,
+      [&]()
+      {
+        namespace occ = gmsh::model::occ;
+        gmsh::model::add("channel_flap_3d");
+        const int channel = occ::addBox(0, 0, 0, 1.0, 0.4, 0.4);
+        const int flap = occ::addBox(0.4, 0, 0.1, 0.05, 0.25, 0.2);
+        gmsh::vectorpair out;
+        std::vector<gmsh::vectorpair> map;
+        occ::fragment({{3, channel}}, {{3, flap}}, out, map);
+        occ::synchronize();
+        std::vector<int> fluid, solid;
+        for (auto [d, t] : out)
+        {
+          double v;
+          occ::getMass(d, t, v);
+          (v < 0.01 ? solid : fluid).push_back(t);
+        }
+        if (fluid.size() != 1 or solid.size() != 1)
+          throw std::runtime_error("3D flap channel: unexpected fragments");
+        auto faces = [](int volume)
+        {
+          gmsh::vectorpair b;
+          gmsh::model::getBoundary({{3, volume}}, b, false, false, false);
+          std::set<int> f;
+          for (auto [d, t] : b)
+            f.insert(std::abs(t));
+          return f;
+        };
+        const std::set<int> ff = faces(fluid[0]), fs = faces(solid[0]);
+        std::map<std::string, std::vector<int>> groups;
+        for (int f : ff)
+        {
+          double cx, cy, cz;
+          occ::getCenterOfMass(2, f, cx, cy, cz);
+          groups[fs.count(f)     ? "interface"
+                 : cx < 1e-9     ? "inlet"
+                 : cx > 1 - 1e-9 ? "outlet"
+                                 : "walls"]
+              .push_back(f);
+        }
+        for (int f : fs)
+          if (!ff.count(f))
+            groups["clamped"].push_back(f);
+        int id = 1;
+        for (auto& [name, g] : groups)
+        {
+          gmsh::model::addPhysicalGroup(2, g, id);
+          gmsh::model::setPhysicalName(2, id++, name);
+        }
+        gmsh::model::addPhysicalGroup(3, fluid, 1);
+        gmsh::model::setPhysicalName(3, 1, "fluid");
+        gmsh::model::addPhysicalGroup(3, solid, 2);
+        gmsh::model::setPhysicalName(3, 2, "solid");
+        gmsh::option::setNumber("Mesh.MeshSizeMax", h);
+        gmsh::option::setNumber("Mesh.MeshSizeMin", h / 4);
+        gmsh::model::mesh::generate(3);
+      },
+      {"fluid", "solid"});
+  return {std::move(parts[0]), std::move(parts[1])};
+}

@@ -42,3 +42,13 @@ struct FluidSolidMeshes
 };
 FluidSolidMeshes turek_hron_fsi(MPI_Comm comm, double h, double h_i);
 } // namespace fsai::mesh
+
+namespace fsai::mesh
+{
+/// A small 3D FSI scene: the channel [0, 1] x [0, 0.4] x [0, 0.4] m (x the
+/// stream direction, y up) with an elastic flap [0.4, 0.45] x [0, 0.25] x
+/// [0.1, 0.3] m standing on its floor, meshed as one model with two parts
+/// (tetrahedra of size h). fluid: "inlet" (x = 0), "outlet" (x = 1),
+/// "walls", "interface"; solid: "clamped" (the flap's base), "interface".
+FluidSolidMeshes channel_flap_3d(MPI_Comm comm, double h);
+} // namespace fsai::mesh
