@@ -177,21 +177,21 @@ fsai::ale::MeshMotion::MeshMotion(std::shared_ptr<mesh::Mesh> mesh,
   auto Q = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
       ale_forms::functionspace_a(tdim, 1), "k", mesh));
   _k = fn(Q, "ale_stiffening");
-  _vol0.resize(ncells);
+  _det0.resize(ncells);
   double vmax = 0;
   for (std::int32_t c = 0; c < ncells; ++c)
   {
-    _vol0[c]
-        = std::abs(simplex_jacobian(cell_vertices(*mesh, _X, c), tdim).first);
-    vmax = std::max(vmax, _vol0[c]);
+    _det0[c] = simplex_jacobian(cell_vertices(*mesh, _X, c), tdim).first;
+    vmax = std::max(vmax, std::abs(_det0[c]));
   }
   MPI_Allreduce(MPI_IN_PLACE, &vmax, 1, MPI_DOUBLE, MPI_MAX, mesh->comm());
   _k_size.resize(ncells);
   _J.assign(ncells, 1.0);
   for (std::int32_t c = 0; c < ncells; ++c)
   {
-    _k_size[c]
-        = p.stiffening == "size" ? std::pow(vmax / _vol0[c], p.chi) : 1.0;
+    _k_size[c] = p.stiffening == "size"
+                     ? std::pow(vmax / std::abs(_det0[c]), p.chi)
+                     : 1.0;
   }
 
   // Boundary conditions (collective: every rank locates every list).
@@ -248,10 +248,8 @@ void fsai::ale::MeshMotion::assemble()
       for (int i = 0; i <= tdim; ++i)
         for (int j = 0; j < tdim; ++j)
           v[3 * i + j] += d[bs * _node_dof[nodes[i]] + j];
-      const double Jd = std::max(
-          simplex_jacobian(v, tdim).first
-              / simplex_jacobian(cell_vertices(*_mesh, _X, c), tdim).first,
-          1e-3);
+      const double Jd
+          = std::max(simplex_jacobian(v, tdim).first / _det0[c], 1e-3);
       // Under-relaxed (geometric mean with the last J): the plain fixed
       // point oscillates between squeezing one cell layer and the next
       _J[c] = std::sqrt(_J[c] * Jd);

@@ -136,7 +136,7 @@ private:
   std::vector<std::int32_t> _node_dof; // geometry node -> P1 dof (block)
   std::shared_ptr<dolfinx::fem::Function<double>> _d, _d_interface, _k;
   std::vector<double> _d_n, _d_nn;    // accepted history
-  std::vector<double> _vol0, _k_size; // reference cell volumes, size factor
+  std::vector<double> _det0, _k_size; // reference cell Jacobians, size factor
   std::vector<double> _J; // relaxed cell volume ratios (jacobian stiffening)
   void assemble();  // k from the stiffening model, then A (reference mesh)
   int _history = 0; // accepted steps available (0, 1, 2)

@@ -3,7 +3,6 @@
 #include "../common/timer.h"
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/utils.h>
-#include <fmt/format.h>
 #include <fsai_forms/ale.h>
 
 using namespace dolfinx;
