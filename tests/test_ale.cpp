@@ -79,19 +79,8 @@ fsai::mesh::MeshData squeezing_gap(double g0, double h_gap)
         gmsh::model::setPhysicalName(1, 3, "fold");
         gmsh::model::addPhysicalGroup(2, {1}, 1);
         gmsh::model::setPhysicalName(2, 1, "fluid");
-        namespace field = gmsh::model::mesh::field;
-        const int fd = field::add("Distance");
-        field::setNumbers(fd, "CurvesList", {double(surface)});
-        field::setNumber(fd, "NumPointsPerCurve", 400);
-        const int ft = field::add("Threshold");
-        field::setNumber(ft, "InField", fd);
-        field::setNumber(ft, "SizeMin", h_gap);
-        field::setNumber(ft, "SizeMax", 0.25 * mm);
-        field::setNumber(ft, "DistMin", 0.0);
-        field::setNumber(ft, "DistMax", 1.5 * mm);
-        field::setAsBackgroundMesh(ft);
-        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-        gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+        fsai::mesh::size_near_curves({surface}, h_gap, 0.25 * mm, 1.5 * mm,
+                                     400);
         gmsh::model::mesh::generate(2);
       });
 }

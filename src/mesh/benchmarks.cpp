@@ -108,20 +108,7 @@ fsai::mesh::MeshData fsai::mesh::dfg_channel(MPI_Comm comm, double h,
         gmsh::model::setPhysicalName(2, 1, "fluid");
 
         // Size: h_cyl on the cylinder, growing linearly to h at 0.3 m
-        std::vector<double> cyl(cylinder.begin(), cylinder.end());
-        const int fd = gmsh::model::mesh::field::add("Distance");
-        gmsh::model::mesh::field::setNumbers(fd, "CurvesList", cyl);
-        gmsh::model::mesh::field::setNumber(fd, "NumPointsPerCurve", 200);
-        const int ft = gmsh::model::mesh::field::add("Threshold");
-        gmsh::model::mesh::field::setNumber(ft, "InField", fd);
-        gmsh::model::mesh::field::setNumber(ft, "SizeMin", h_cyl);
-        gmsh::model::mesh::field::setNumber(ft, "SizeMax", h);
-        gmsh::model::mesh::field::setNumber(ft, "DistMin", 0.0);
-        gmsh::model::mesh::field::setNumber(ft, "DistMax", 0.3);
-        gmsh::model::mesh::field::setAsBackgroundMesh(ft);
-        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-        gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-        gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+        size_near_curves(cylinder, h_cyl, h, 0.3);
         gmsh::option::setNumber("Mesh.Algorithm", 6);
         gmsh::model::mesh::generate(2);
       });
@@ -217,24 +204,11 @@ fsai::mesh::FluidSolidMeshes fsai::mesh::turek_hron_fsi(MPI_Comm comm, double h,
         gmsh::model::setPhysicalName(2, 2, "solid");
 
         // Size: h_i on the cylinder and the beam, growing to h at 0.3 m
-        std::vector<double> near;
+        std::vector<int> near;
         for (auto* g :
              {&groups["cylinder"], &groups["interface"], &groups["clamped"]})
           near.insert(near.end(), g->begin(), g->end());
-        namespace field = gmsh::model::mesh::field;
-        const int fd = field::add("Distance");
-        field::setNumbers(fd, "CurvesList", near);
-        field::setNumber(fd, "NumPointsPerCurve", 200);
-        const int ft = field::add("Threshold");
-        field::setNumber(ft, "InField", fd);
-        field::setNumber(ft, "SizeMin", h_i);
-        field::setNumber(ft, "SizeMax", h);
-        field::setNumber(ft, "DistMin", 0.0);
-        field::setNumber(ft, "DistMax", 0.3);
-        field::setAsBackgroundMesh(ft);
-        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-        gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-        gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+        size_near_curves(near, h_i, h, 0.3);
         gmsh::option::setNumber("Mesh.Algorithm", 6);
         gmsh::model::mesh::generate(2);
       },

@@ -383,6 +383,27 @@ fsai::mesh::build_parts_with_gmsh(MPI_Comm comm, int gdim,
   return out;
 }
 //-----------------------------------------------------------------------------
+void fsai::mesh::size_near_curves(const std::vector<int>& curves, double h_min,
+                                  double h_max, double dist_max,
+                                  int points_per_curve)
+{
+  namespace field = gmsh::model::mesh::field;
+  const int fd = field::add("Distance");
+  field::setNumbers(fd, "CurvesList",
+                    std::vector<double>(curves.begin(), curves.end()));
+  field::setNumber(fd, "NumPointsPerCurve", points_per_curve);
+  const int ft = field::add("Threshold");
+  field::setNumber(ft, "InField", fd);
+  field::setNumber(ft, "SizeMin", h_min);
+  field::setNumber(ft, "SizeMax", h_max);
+  field::setNumber(ft, "DistMin", 0.0);
+  field::setNumber(ft, "DistMax", dist_max);
+  field::setAsBackgroundMesh(ft);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+}
+//-----------------------------------------------------------------------------
 fsai::mesh::MeshData fsai::mesh::from_geo_file(MPI_Comm comm,
                                                const std::string& path,
                                                int gdim, double h)

@@ -56,6 +56,15 @@ build_parts_with_gmsh(MPI_Comm comm, int gdim,
                       const std::function<void()>& build,
                       const std::vector<std::string>& parts);
 
+/// Inside a build function (rank 0): a background size field of the
+/// current model — size h_min on `curves`, growing linearly with the
+/// distance to h_max at `dist_max` (distance sampled at `points_per_curve`
+/// points per curve) — with the sizes from points, boundary extension and
+/// curvature switched off so that the field alone decides
+void size_near_curves(const std::vector<int>& curves, double h_min,
+                      double h_max, double dist_max,
+                      int points_per_curve = 200);
+
 /// Build a mesh from a gmsh `.geo` file: the file is opened and meshed in
 /// dimension `gdim` on rank 0 and distributed.
 /// @param[in] h Characteristic length passed as the gmsh option
