@@ -402,40 +402,50 @@ int fsai::fluid::FluidSolver::solve_steady(int max_iterations)
       max_iterations));
 }
 //-----------------------------------------------------------------------------
-std::array<double, 3>
-fsai::fluid::FluidSolver::force(std::span<const std::int32_t> facets)
+la::Vector<double> fsai::fluid::FluidSolver::residual()
 {
-  common::ScopedTimer timer("fluid: force");
   la::Vector<double> r(_W->dofmap()->index_map, 1);
   r.set(0.0);
   fem::assemble_vector(r.mutable_array(), *_F);
   r.scatter_rev(std::plus<double>());
-  // Velocity dofs of the boundary, per component (cached: the same
-  // boundary is asked for every step)
+  return r;
+}
+//-----------------------------------------------------------------------------
+const std::vector<std::int32_t>&
+fsai::fluid::FluidSolver::owned_boundary_blocks(
+    std::span<const std::int32_t> facets)
+{
+  // Cached: the same boundary is asked for every step (and every coupling
+  // iteration). Locating dofs is collective, and a rank with no facets on
+  // two boundaries sees one (empty) key for both, so whether to locate is
+  // decided by all ranks together
   std::vector<std::int32_t> key(facets.begin(), facets.end());
-  auto it = _force_dofs.find(key);
-  if (it == _force_dofs.end())
+  auto it = _boundary_blocks.find(key);
+  int miss = it == _boundary_blocks.end();
+  MPI_Allreduce(MPI_IN_PLACE, &miss, 1, MPI_INT, MPI_MAX, _W->mesh()->comm());
+  if (miss)
   {
     const int tdim = _W->mesh()->topology().dim();
-    const std::int32_t owned = _W->dofmap()->index_map->size_local();
-    std::array<std::vector<std::int32_t>, 3> dofs;
-    for (int i = 0; i < tdim; ++i)
-    {
-      // NOTE(DOLFINx 0.5.2): W->sub({0, i}) is not the i-th component of
-      // sub-space 0; chain sub() calls
-      for (std::int32_t d : fem::locate_dofs_topological(
-               *_W->sub({0})->sub({i}), tdim - 1, facets))
-      {
-        if (d < owned)
-          dofs[i].push_back(d);
-      }
-    }
-    it = _force_dofs.emplace(key, std::move(dofs)).first;
+    const std::int32_t owned = _V->dofmap()->index_map->size_local();
+    std::vector<std::int32_t> blocks;
+    for (std::int32_t d : fem::locate_dofs_topological(*_V, tdim - 1, facets))
+      if (d < owned)
+        blocks.push_back(d);
+    it = _boundary_blocks.insert_or_assign(key, std::move(blocks)).first;
   }
+  return it->second;
+}
+//-----------------------------------------------------------------------------
+std::array<double, 3>
+fsai::fluid::FluidSolver::force(std::span<const std::int32_t> facets)
+{
+  common::ScopedTimer timer("fluid: force");
+  const la::Vector<double> r = residual();
+  const int bs = _V->dofmap()->index_map_bs();
   std::array<double, 3> local{0, 0, 0}, global{0, 0, 0};
-  for (int i = 0; i < 3; ++i)
-    for (std::int32_t d : it->second[i])
-      local[i] += r.array()[d];
+  for (std::int32_t d : owned_boundary_blocks(facets))
+    for (int k = 0; k < bs; ++k)
+      local[k] += r.array()[_map_v[bs * d + k]];
   MPI_Allreduce(local.data(), global.data(), 3, MPI_DOUBLE, MPI_SUM,
                 _W->mesh()->comm());
   // The residual at a wall dof is the traction the wall exerts on the
@@ -448,21 +458,13 @@ void fsai::fluid::FluidSolver::nodal_forces(
     std::span<const std::int32_t> facets, fem::Function<double>& F)
 {
   common::ScopedTimer timer("fluid: force");
-  la::Vector<double> r(_W->dofmap()->index_map, 1);
-  r.set(0.0);
-  fem::assemble_vector(r.mutable_array(), *_F);
-  r.scatter_rev(std::plus<double>());
-  const int tdim = _W->mesh()->topology().dim();
+  const la::Vector<double> r = residual();
   const int bs = _V->dofmap()->index_map_bs();
-  const std::int32_t owned = _V->dofmap()->index_map->size_local();
   auto f = F.x()->mutable_array();
   std::fill(f.begin(), f.end(), 0.0);
-  for (std::int32_t d : fem::locate_dofs_topological(*_V, tdim - 1, facets))
-  {
-    if (d < owned)
-      for (int k = 0; k < bs; ++k)
-        f[bs * d + k] = -r.array()[_map_v[bs * d + k]];
-  }
+  for (std::int32_t d : owned_boundary_blocks(facets))
+    for (int k = 0; k < bs; ++k)
+      f[bs * d + k] = -r.array()[_map_v[bs * d + k]];
   F.x()->scatter_fwd();
 }
 //-----------------------------------------------------------------------------

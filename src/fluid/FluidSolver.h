@@ -157,7 +157,12 @@ private:
   std::shared_ptr<dolfinx::fem::Form<double>> _a, _L, _F;
   dolfinx::la::petsc::Matrix _A;
   dolfinx::la::petsc::KrylovSolver _solver;
-  std::map<std::vector<std::int32_t>, std::array<std::vector<std::int32_t>, 3>>
-      _force_dofs;
+  /// Owned velocity-space dof blocks of a boundary, cached per facet list
+  std::map<std::vector<std::int32_t>, std::vector<std::int32_t>>
+      _boundary_blocks;
+  const std::vector<std::int32_t>&
+  owned_boundary_blocks(std::span<const std::int32_t> facets);
+  /// Weak-form residual of the current solution (owned entries summed)
+  dolfinx::la::Vector<double> residual();
 };
 } // namespace fsai::fluid
