@@ -1,0 +1,234 @@
+// Copyright (C) 2026 fsai developers
+//
+// fsai_glottis: self-oscillating vocal folds that close the glottis
+// (shared/DESIGN.md §2 "Glottis closure", paper §2.5). A 2D symmetric
+// half-channel with an M5-like fold profile (src/glottis/FoldProfile) on
+// the 2-DOF model (TwoDofFold), Hertz impact on the symmetry axis, driven by
+// the subglottal pressure.
+//
+//   --flow bernoulli: quasi-steady 1D Bernoulli flow with separation
+//     (BernoulliFlow), the reduced model.
+//
+// Sample runs:
+//   ./fsai_glottis --flow bernoulli --p-sub 800 --duration 0.3
+//
+// Outputs in --output (default results/fsai_glottis): series.csv (t, g, Q,
+// h, φ, forces, contact force, penetration, closed flag, iterations),
+// glottis.png (g, Q and the spectrum of Q; matplotlib), summary.json (f0_hz,
+// open_quotient, q_peak_m3s, closed_leakage, max_penetration_m, sim_time_s,
+// coupling_iterations_mean, ...).
+
+#include <common/Parameters.h>
+#include <common/Runtime.h>
+#include <common/errors.h>
+#include <common/log.h>
+#include <common/timer.h>
+#include <glottis/BernoulliGlottis.h>
+#include <glottis/waveform.h>
+#include <io/CsvWriter.h>
+#include <io/Progress.h>
+#include <io/RunSummary.h>
+#include <io/output_dir.h>
+
+#include <cmath>
+#include <cstdlib>
+
+namespace
+{
+struct SceneParameters
+{
+  std::string output = "results/fsai_glottis";
+  std::string flow = "bernoulli";
+  std::string fold = "2dof";
+  double p_sub = 800;     // [Pa]
+  double duration = 0.25; // [s]
+  double dt = 2e-5;       // [s]
+  double rho = 1.2;       // [kg/m³]
+  double separation_ratio = 1.2;
+  double stats_from = 0.5; // statistics over t ≥ stats_from · duration
+  std::vector<double> onset_sweep; // p_sub values for the stability sweep
+
+  void bind(fsai::common::Parameters& p)
+  {
+    p.add("output", output, "output folder");
+    p.add_choice("flow", flow, {"bernoulli"},
+                 "flow model: bernoulli (quasi-steady 1D)");
+    p.add_choice("fold", fold, {"2dof"}, "vocal-fold model: 2dof");
+    p.add("p-sub", p_sub, "subglottal pressure [Pa]");
+    p.add("duration", duration, "simulated time [s]");
+    p.add("dt", dt, "time step [s]");
+    p.add("rho", rho, "air density [kg/m^3]");
+    p.add("bernoulli.separation_ratio", separation_ratio,
+          "flow separates where the gap reaches this multiple of its minimum");
+    p.add("stats_from", stats_from,
+          "limit-cycle statistics over t >= stats_from * duration");
+    p.add("onset_sweep", onset_sweep,
+          "bernoulli: linear stability of the static equilibrium at these "
+          "p_sub [Pa] (printed, onset.csv) instead of a time run");
+  }
+  void validate() const
+  {
+    fsai::require_positive("--p-sub", p_sub);
+    fsai::require_positive("--duration", duration);
+    fsai::require_positive("--dt", dt);
+    fsai::require(dt <= duration, "--dt", "<= --duration", dt);
+    fsai::require_positive("--rho", rho);
+    fsai::require(separation_ratio >= 1, "--bernoulli.separation_ratio",
+                  ">= 1", separation_ratio);
+    fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
+  }
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return fsai::common::run_main(
+      argc, argv,
+      [](fsai::common::Runtime& rt)
+      {
+        SceneParameters sp;
+        fsai::glottis::GlottisGeometry geo;
+        fsai::glottis::TwoDofParameters vf;
+        vf.h0 = 0.05e-3; // a small perturbation from rest
+        fsai::glottis::ContactParameters cp;
+        fsai::common::Parameters params(rt.program(),
+                                        "Self-oscillating vocal folds that "
+                                        "close the glottis");
+        sp.bind(params);
+        geo.bind(params);
+        vf.bind(params);
+        cp.bind(params);
+        params.parse(rt.app_args());
+        sp.validate();
+        geo.validate();
+        vf.validate();
+        cp.validate();
+        params.print();
+        fsai::io::prepare_output_dir(rt.comm(), sp.output);
+        fsai::io::RunSummary summary(rt.comm(), rt.program());
+        summary.set_parameters(params.to_json());
+
+        // 1. The fold and its in-vacuo modes
+        const fsai::glottis::FoldProfile profile(geo);
+        const auto mp = profile.mass_properties(vf.density);
+        fsai::glottis::BernoulliGlottisParameters bp;
+        bp.p_sub = sp.p_sub;
+        bp.rho = sp.rho;
+        bp.separation_ratio = sp.separation_ratio;
+        bp.dt = sp.dt;
+        if (!sp.onset_sweep.empty())
+        {
+          fsai::io::CsvWriter onset(rt.comm(), sp.output + "/onset.csv",
+                                    {"p_sub_Pa", "gap_static_m",
+                                     "growth_rate_1_per_s", "frequency_hz",
+                                     "growth_rate_2_per_s", "frequency_2_hz"});
+          for (double ps : sp.onset_sweep)
+          {
+            bp.p_sub = ps;
+            const auto r = fsai::glottis::linear_stability(profile, vf, bp);
+            if (r.closed or r.growth_rate.size() < 2)
+            {
+              fsai::log::info("p_sub {:8.1f} Pa: static equilibrium closed "
+                              "or overdamped",
+                              ps);
+              continue;
+            }
+            fsai::log::info("p_sub {:8.1f} Pa: static gap {:.3e} m, modes "
+                            "{:+9.2f} 1/s at {:7.2f} Hz, {:+9.2f} 1/s at "
+                            "{:7.2f} Hz",
+                            ps, r.gap_static, r.growth_rate[0],
+                            r.frequency_hz[0], r.growth_rate[1],
+                            r.frequency_hz[1]);
+            onset.row({ps, r.gap_static, r.growth_rate[0], r.frequency_hz[0],
+                       r.growth_rate[1], r.frequency_hz[1]});
+          }
+          return;
+        }
+        fsai::glottis::BernoulliGlottis scene(profile, vf, cp, bp);
+        const auto& fold = scene.fold();
+        const auto md
+            = fsai::glottis::modes(fold.stiffness(), fold.mass());
+        fsai::log::info(
+            "fold: area {:.2f} mm², mass {:.3f} g, I_EA {:.3e} kg m², "
+            "k_h {:.1f} N/m, k_phi {:.3e} N m; in-vacuo {:.1f} / {:.1f} Hz; "
+            "Hertz k_H {:.3e} N/m^1.5",
+            mp.area * 1e6, fold.mass()[0][0] * 1e3, fold.mass()[1][1],
+            fold.stiffness()[0][0], fold.stiffness()[1][1],
+            md.frequency_hz[0], md.frequency_hz[1],
+            fsai::glottis::hertz_stiffness(cp, geo.medial_radius));
+        summary.set("fold_mass_kg", fold.mass()[0][0]);
+        summary.set("invacuo_frequencies_hz",
+                    std::vector<double>{md.frequency_hz[0], md.frequency_hz[1]});
+
+        // 2. Time loop
+        fsai::io::CsvWriter csv(
+            rt.comm(), sp.output + "/series.csv",
+            {"t_s", "gap_m", "Q_m3s", "h_m", "phi_rad", "lift_N", "drag_N",
+             "moment_Nm", "contact_force_N", "penetration_m", "closed",
+             "iterations"});
+        const long n = std::lround(sp.duration / sp.dt);
+        fsai::io::Progress progress("step", double(n), 5.0);
+        std::vector<double> t, g, Q;
+        t.reserve(n);
+        g.reserve(n);
+        Q.reserve(n);
+        double max_pen = 0;
+        long its = 0;
+        int its_max = 0;
+        {
+          fsai::common::ScopedTimer timer("glottis: bernoulli time loop");
+          for (long k = 1; k <= n; ++k)
+          {
+            const auto s = scene.step();
+            csv.row({s.t, s.gap, s.Q, s.h, s.phi, s.lift, s.drag, s.moment,
+                     s.contact_force, s.penetration, double(s.closed),
+                     double(s.iterations)});
+            t.push_back(s.t);
+            g.push_back(s.gap);
+            Q.push_back(s.Q);
+            max_pen = std::max(max_pen, s.penetration);
+            its += s.iterations;
+            its_max = std::max(its_max, s.iterations);
+            progress.update(double(k),
+                            fmt::format("t = {:.4f} g = {:+.3e} Q = {:.3e}",
+                                        s.t, s.gap, s.Q));
+          }
+        }
+        const double wall = summary.wall_s();
+
+        // 3. Limit-cycle statistics
+        const auto cs = fsai::glottis::cycle_stats(t, g, Q,
+                                                   sp.stats_from * sp.duration);
+        fsai::log::info(
+            "limit cycle (t >= {:.3f} s): {} cycles, f0 = {:.2f} Hz, open "
+            "quotient {:.3f}, peak flow {:.3e} m³/s, closed in every cycle: "
+            "{}, closed-phase leakage {:.2e} of the peak, gap amplitude "
+            "{:.3e} m, max penetration {:.3e} m; real-time factor {:.1f}",
+            sp.stats_from * sp.duration, cs.cycles, cs.f0_hz, cs.open_quotient,
+            cs.q_peak, cs.closes_every_cycle ? "yes" : "no", cs.closed_leakage,
+            cs.gap_amplitude, max_pen, sp.duration / wall);
+        summary.set("f0_hz", cs.f0_hz);
+        summary.set("open_quotient", cs.open_quotient);
+        summary.set("q_peak_m3s", cs.q_peak);
+        summary.set("closed_leakage", cs.closed_leakage);
+        summary.set("max_penetration_m", max_pen);
+        summary.set("sim_time_s", sp.duration);
+        summary.set("cycles", cs.cycles);
+        summary.set("closes_every_cycle", cs.closes_every_cycle);
+        summary.set("gap_amplitude_m", cs.gap_amplitude);
+        summary.set("coupling_iterations_mean", double(its) / double(n));
+        summary.set("coupling_iterations_max", its_max);
+        summary.set("real_time_factor", sp.duration / wall);
+        summary.write(sp.output + "/summary.json");
+
+        // 4. Chart (optional: a missing matplotlib only warns)
+        if (rt.rank() == 0)
+        {
+          const std::string cmd = std::string(FSAI_PYTHON) + " "
+                                  + FSAI_SCRIPTS_DIR + "/plot_glottis.py "
+                                  + sp.output + " > /dev/null 2>&1";
+          if (std::system(cmd.c_str()) != 0)
+            fsai::log::warn("could not draw glottis.png ({})", cmd);
+        }
+      });
+}

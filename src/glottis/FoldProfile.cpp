@@ -1,0 +1,242 @@
+// Copyright (C) 2026 fsai developers
+#include "FoldProfile.h"
+#include <cmath>
+#include <common/Parameters.h>
+#include <common/errors.h>
+
+void fsai::glottis::GlottisGeometry::bind(fsai::common::Parameters& p)
+{
+  p.add("glottis.half_height", half_height, "channel half-width H [m]");
+  p.add("glottis.inlet_length", inlet_length,
+        "subglottal channel length before the fold [m]");
+  p.add("glottis.outlet_length", outlet_length,
+        "supraglottal channel length after the fold [m]");
+  p.add("glottis.fold_length", fold_length,
+        "fold extent T along the wall (inferior-superior) [m]");
+  p.add("glottis.medial_x", medial_x, "x of the medial surface's centre [m]");
+  p.add("glottis.medial_thickness", medial_thickness,
+        "flat medial surface length T_m [m]");
+  p.add("glottis.medial_radius", medial_radius,
+        "curvature radius R of the medial edges (the Hertz radius) [m]");
+  p.add("glottis.rest_gap", rest_gap, "rest half-gap g0 [m]");
+  p.add("glottis.depth", depth, "fold length L_g (anterior-posterior) [m]");
+  p.add("glottis.taper", taper,
+        "attachment band at the wall: fixed fold body, the motion fades "
+        "across it; the profile below it vibrates [m]");
+}
+
+void fsai::glottis::GlottisGeometry::validate() const
+{
+  for (auto [name, v] :
+       {std::pair{"--glottis.half_height", half_height},
+        {"--glottis.inlet_length", inlet_length},
+        {"--glottis.outlet_length", outlet_length},
+        {"--glottis.fold_length", fold_length},
+        {"--glottis.medial_radius", medial_radius},
+        {"--glottis.medial_thickness", medial_thickness},
+        {"--glottis.rest_gap", rest_gap}, {"--glottis.depth", depth},
+        {"--glottis.taper", taper}})
+  {
+    fsai::require_positive(name, v);
+  }
+  fsai::require(rest_gap + 2 * medial_radius < half_height,
+                "--glottis.rest_gap + 2 medial_radius", "< half_height",
+                rest_gap + 2 * medial_radius);
+  fsai::require(medial_x - medial_thickness / 2 - medial_radius > 0
+                    and medial_x + medial_thickness / 2 + medial_radius
+                            < fold_length,
+                "--glottis.medial_x",
+                "at least T_m/2 + R inside (0, fold_length)", medial_x);
+  fsai::require(taper < half_height - rest_gap - medial_radius,
+                "--glottis.taper", "< half_height - rest_gap - medial_radius",
+                taper);
+}
+
+namespace
+{
+using P2 = std::array<double, 2>;
+
+// Tangent point on the circle (c, r) of the line through p, for a path that
+// runs counter-clockwise around the circle: `arrive` = the path comes from p
+// to the circle, otherwise it leaves the circle towards p
+double tangent_angle(P2 p, P2 c, double r, bool arrive)
+{
+  const double dx = p[0] - c[0], dy = p[1] - c[1];
+  const double d = std::hypot(dx, dy);
+  const double base = std::atan2(dy, dx), a = std::acos(r / d);
+  for (double th : {base + a, base - a})
+  {
+    const P2 t = {c[0] + r * std::cos(th), c[1] + r * std::sin(th)};
+    // counter-clockwise tangent direction at th
+    const P2 dir = {-std::sin(th), std::cos(th)};
+    const double s = arrive ? (t[0] - p[0]) * dir[0] + (t[1] - p[1]) * dir[1]
+                            : (p[0] - t[0]) * dir[0] + (p[1] - t[1]) * dir[1];
+    if (s > 0)
+      return th;
+  }
+  return base; // not reached for d > r
+}
+} // namespace
+
+fsai::glottis::FoldProfile::FoldProfile(const GlottisGeometry& g, int n) : _g(g)
+{
+  g.validate();
+  const double H = g.half_height, R = g.medial_radius;
+  _centres = {{{g.medial_x - g.medial_thickness / 2, g.rest_gap + R},
+               {g.medial_x + g.medial_thickness / 2, g.rest_gap + R}}};
+  const P2 A = {0.0, H}, B = {g.fold_length, H};
+  const double bottom = 1.5 * M_PI; // lowest point of a circle
+  double th1 = tangent_angle(A, _centres[0], R, true);
+  while (th1 > bottom)
+    th1 -= 2 * M_PI;
+  double th2 = tangent_angle(B, _centres[1], R, false);
+  while (th2 < bottom)
+    th2 += 2 * M_PI;
+  auto on = [&](int c, double th) -> P2 {
+    return {_centres[c][0] + R * std::cos(th), _centres[c][1] + R * std::sin(th)};
+  };
+  const P2 T1 = on(0, th1), T2 = on(1, th2);
+  // Pieces: inferior line, inferior edge arc, flat medial surface,
+  // superior edge arc, superior line
+  const std::array<double, 5> len
+      = {std::hypot(T1[0] - A[0], T1[1] - A[1]), R * (bottom - th1),
+         g.medial_thickness, R * (th2 - bottom),
+         std::hypot(B[0] - T2[0], B[1] - T2[1])};
+  double L = 0;
+  for (double l : len)
+    L += l;
+  n = std::max(n, 50);
+  _pts.reserve(n);
+  for (int i = 0; i < n; ++i)
+  {
+    double s = L * i / (n - 1);
+    int piece = 0;
+    while (piece < 4 and s > len[piece])
+      s -= len[piece++];
+    const double a = std::clamp(s / len[piece], 0.0, 1.0);
+    P2 x;
+    switch (piece)
+    {
+    case 0:
+      x = {A[0] + a * (T1[0] - A[0]), A[1] + a * (T1[1] - A[1])};
+      break;
+    case 1:
+      x = on(0, th1 + s / R);
+      break;
+    case 2:
+      x = {_centres[0][0] + s, g.rest_gap};
+      break;
+    case 3:
+      x = on(1, bottom + s / R);
+      break;
+    default:
+      x = {T2[0] + a * (B[0] - T2[0]), T2[1] + a * (B[1] - T2[1])};
+    }
+    _pts.push_back(x);
+  }
+  _w.reserve(n);
+  for (auto& x : _pts)
+    _w.push_back(weight(x));
+  for (std::size_t i = 0; i + 1 < _pts.size(); ++i)
+  {
+    _mid.push_back({0.5 * (_pts[i][0] + _pts[i + 1][0]),
+                    0.5 * (_pts[i][1] + _pts[i + 1][1])});
+    _wmid.push_back(weight(_mid.back()));
+  }
+}
+
+double fsai::glottis::FoldProfile::weight(const std::array<double, 2>& X) const
+{
+  const double s = std::clamp((_g.half_height - X[1]) / _g.taper, 0.0, 1.0);
+  return s * s * (3 - 2 * s);
+}
+
+fsai::glottis::MassProperties
+fsai::glottis::FoldProfile::mass_properties(double density) const
+{
+  // The vibrating body is the part of the profile below the attachment
+  // band (y ≤ H − taper); the band belongs to the fixed fold body. Clip the
+  // closed surface polygon (counter-clockwise, the fold on the left) at
+  // y = H − taper (Sutherland–Hodgman), then area, first and second moments
+  // by Green's theorem.
+  const double yc = _g.half_height - _g.taper;
+  std::vector<std::array<double, 2>> poly;
+  const std::size_t n0 = _pts.size();
+  for (std::size_t i = 0; i < n0; ++i)
+  {
+    const auto& a = _pts[i];
+    const auto& b = _pts[(i + 1) % n0];
+    const bool ia = a[1] <= yc, ib = b[1] <= yc;
+    if (ia)
+      poly.push_back(a);
+    if (ia != ib)
+    {
+      const double f = (yc - a[1]) / (b[1] - a[1]);
+      poly.push_back({a[0] + f * (b[0] - a[0]), yc});
+    }
+  }
+  double A = 0, Sx = 0, Sy = 0, Ixx = 0, Iyy = 0;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto& p = poly[i];
+    const auto& q = poly[(i + 1) % n];
+    const double c = p[0] * q[1] - q[0] * p[1];
+    A += 0.5 * c;
+    Sx += c * (p[0] + q[0]) / 6;
+    Sy += c * (p[1] + q[1]) / 6;
+    Iyy += c * (p[0] * p[0] + p[0] * q[0] + q[0] * q[0]) / 12; // ∫x²
+    Ixx += c * (p[1] * p[1] + p[1] * q[1] + q[1] * q[1]) / 12; // ∫y²
+  }
+  MassProperties m;
+  m.area = A;
+  m.centroid = {Sx / A, Sy / A};
+  const double polar = Iyy + Ixx
+                       - A * (m.centroid[0] * m.centroid[0]
+                              + m.centroid[1] * m.centroid[1]);
+  m.mass = density * A * _g.depth;
+  m.inertia_centroid = density * polar * _g.depth;
+  return m;
+}
+
+bool fsai::glottis::FoldProfile::contains(const std::array<double, 2>& X) const
+{
+  // Even–odd rule over the closed polygon (surface + wall segment)
+  bool in = false;
+  const std::size_t n = _pts.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+  {
+    const auto& a = _pts[i];
+    const auto& b = _pts[j];
+    if ((a[1] > X[1]) != (b[1] > X[1])
+        and X[0] < (b[0] - a[0]) * (X[1] - a[1]) / (b[1] - a[1]) + a[0])
+    {
+      in = !in;
+    }
+  }
+  return in;
+}
+
+std::array<double, 2> fsai::glottis::RigidMotion::displacement(
+    const std::array<double, 2>& X) const
+{
+  const double c = _c, s = _s;
+  const double rx = X[0] - axis[0], ry = X[1] - axis[1];
+  return {(c - 1) * rx - s * ry, -h + s * rx + (c - 1) * ry};
+}
+
+std::array<std::array<double, 2>, 2>
+fsai::glottis::RigidMotion::derivatives(const std::array<double, 2>& X) const
+{
+  const double c = _c, s = _s;
+  const double rx = X[0] - axis[0], ry = X[1] - axis[1];
+  return {{{0.0, -1.0}, {-s * rx - c * ry, c * rx - s * ry}}};
+}
+
+std::array<double, 2> fsai::glottis::RigidMotion::reference_of(
+    const std::array<double, 2>& x) const
+{
+  const double c = _c, s = _s;
+  const double rx = x[0] - axis[0], ry = x[1] + h - axis[1];
+  return {axis[0] + c * rx + s * ry, axis[1] - s * rx + c * ry};
+}

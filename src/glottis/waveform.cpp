@@ -1,0 +1,62 @@
+// Copyright (C) 2026 fsai developers
+#include "waveform.h"
+#include <algorithm>
+#include <cmath>
+
+fsai::glottis::CycleStats
+fsai::glottis::cycle_stats(const std::vector<double>& t,
+                           const std::vector<double>& gap,
+                           const std::vector<double>& Q, double t_from)
+{
+  CycleStats s;
+  std::size_t i0 = 0;
+  while (i0 < t.size() and t[i0] < t_from)
+    ++i0;
+  if (t.size() - i0 < 3)
+    return s;
+  const auto [gmin, gmax] = std::minmax_element(gap.begin() + i0, gap.end());
+  const double mid = 0.5 * (*gmin + *gmax);
+  s.gap_amplitude = 0.5 * (*gmax - *gmin);
+  std::vector<double> up; // upward crossings of the mid value
+  std::vector<std::size_t> up_i;
+  for (std::size_t i = i0 + 1; i < t.size(); ++i)
+  {
+    if (gap[i - 1] < mid and gap[i] >= mid)
+    {
+      up.push_back(t[i - 1]
+                   + (t[i] - t[i - 1]) * (mid - gap[i - 1])
+                         / (gap[i] - gap[i - 1]));
+      up_i.push_back(i);
+    }
+  }
+  if (up.size() < 3 or s.gap_amplitude <= 0)
+    return s;
+  s.cycles = int(up.size()) - 1;
+  s.f0_hz = s.cycles / (up.back() - up.front());
+  // Over complete cycles only
+  double open = 0, total = 0;
+  bool every = true;
+  for (std::size_t c = 0; c + 1 < up_i.size(); ++c)
+  {
+    bool closed = false;
+    for (std::size_t i = up_i[c]; i < up_i[c + 1]; ++i)
+    {
+      const double dt = t[i] - t[i - 1];
+      total += dt;
+      if (gap[i] > 0)
+        open += dt;
+      else
+        closed = true;
+      s.q_peak = std::max(s.q_peak, Q[i]);
+    }
+    every = every and closed;
+  }
+  s.open_quotient = total > 0 ? open / total : 1;
+  s.closes_every_cycle = every;
+  double leak = 0;
+  for (std::size_t i = up_i.front(); i < up_i.back(); ++i)
+    if (gap[i] <= 0)
+      leak = std::max(leak, std::abs(Q[i]));
+  s.closed_leakage = s.q_peak > 0 ? leak / s.q_peak : 0;
+  return s;
+}

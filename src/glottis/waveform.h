@@ -1,0 +1,28 @@
+// Copyright (C) 2026 fsai developers
+//
+// Limit-cycle measures of the glottis scene from its time series: f0 from
+// the upward mean crossings of the gap g(t), and per cycle whether the
+// glottis closed (g ≤ 0), the open quotient (share of time with g > 0),
+// the peak flow and the closed-phase leakage (largest |Q| while closed,
+// relative to the peak).
+#pragma once
+#include <vector>
+
+namespace fsai::glottis
+{
+struct CycleStats
+{
+  int cycles = 0;              ///< complete cycles in the window
+  double f0_hz = 0;            ///< 0 if fewer than 2 cycles
+  double open_quotient = 1;    ///< time share with g > 0
+  double q_peak = 0;           ///< largest Q [m³/s]
+  double closed_leakage = 0;   ///< max |Q| with g ≤ 0, over q_peak
+  bool closes_every_cycle = false;
+  double gap_amplitude = 0; ///< (max g − min g)/2 [m]
+};
+
+/// Statistics of the samples with t ≥ t_from (uniform or not)
+CycleStats cycle_stats(const std::vector<double>& t,
+                       const std::vector<double>& gap,
+                       const std::vector<double>& Q, double t_from);
+} // namespace fsai::glottis

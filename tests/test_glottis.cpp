@@ -1,0 +1,208 @@
+// Copyright (C) 2026 fsai developers
+// Glottis closure scene, reduced parts (shared/DESIGN.md §2 "Glottis
+// closure", 2-DOF VF): profile geometry and mass properties, the 2-DOF
+// fold's in-vacuo frequencies and Newmark energy, the rigid motion, Hertz
+// impact, the quasi-steady Bernoulli load, limit-cycle measures, and the
+// reduced model's self-sustained oscillation with closure.
+#include "catch.h"
+#include <cmath>
+#include <glottis/BernoulliGlottis.h>
+#include <glottis/waveform.h>
+
+using namespace fsai::glottis;
+
+TEST_CASE("Fold profile: shape, and mass properties by two methods",
+          "[glottis]")
+{
+  const GlottisGeometry g;
+  const FoldProfile prof(g);
+  const auto& x = prof.points();
+  CHECK(x.front()[0] == Approx(0).margin(1e-15));
+  CHECK(x.front()[1] == Approx(g.half_height));
+  CHECK(x.back()[0] == Approx(g.fold_length));
+  CHECK(x.back()[1] == Approx(g.half_height));
+  double ymin = 1;
+  for (auto& p : x)
+    ymin = std::min(ymin, p[1]);
+  CHECK(ymin == Approx(g.rest_gap).epsilon(1e-12));
+  // Mass properties of the part below the attachment band (Green's theorem
+  // on the clipped polygon) against cell sampling with contains()
+  const auto mp = prof.mass_properties(1000);
+  const int n = 600;
+  const double dx = g.fold_length / n;
+  const double ycut = g.half_height - g.taper;
+  const double dy = ycut / n;
+  double A = 0, sx = 0, sy = 0, J = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+    {
+      const std::array<double, 2> X = {(i + 0.5) * dx, (j + 0.5) * dy};
+      if (prof.contains(X))
+      {
+        A += dx * dy;
+        sx += X[0] * dx * dy;
+        sy += X[1] * dx * dy;
+        J += (X[0] * X[0] + X[1] * X[1]) * dx * dy;
+      }
+    }
+  CHECK(mp.area == Approx(A).epsilon(2e-3));
+  CHECK(mp.centroid[0] == Approx(sx / A).epsilon(2e-3));
+  CHECK(mp.centroid[1] == Approx(sy / A).epsilon(2e-3));
+  const double Jc = 1000 * g.depth
+                    * (J - A * (std::pow(sx / A, 2) + std::pow(sy / A, 2)));
+  CHECK(mp.inertia_centroid == Approx(Jc).epsilon(5e-3));
+  CHECK(mp.mass == Approx(1000 * A * g.depth).epsilon(2e-3));
+}
+
+TEST_CASE("Rigid motion: inverse map and derivatives", "[glottis]")
+{
+  const RigidMotion m(0.3e-3, 0.05, {4e-3, 3e-3});
+  const std::array<double, 2> X = {6e-3, 0.5e-3};
+  const auto u = m.displacement(X);
+  const auto Xb = m.reference_of({X[0] + u[0], X[1] + u[1]});
+  CHECK(Xb[0] == Approx(X[0]).epsilon(1e-12));
+  CHECK(Xb[1] == Approx(X[1]).epsilon(1e-12));
+  const auto d = m.derivatives(X);
+  const double e = 1e-7;
+  const auto up = RigidMotion(m.h, m.phi + e, m.axis).displacement(X);
+  const auto um = RigidMotion(m.h, m.phi - e, m.axis).displacement(X);
+  CHECK(d[1][0] == Approx((up[0] - um[0]) / (2 * e)).epsilon(1e-6));
+  CHECK(d[1][1] == Approx((up[1] - um[1]) / (2 * e)).epsilon(1e-6));
+  CHECK(d[0][1] == -1.0);
+}
+
+TEST_CASE("2-DOF fold: in-vacuo frequencies and energy-conserving Newmark",
+          "[glottis]")
+{
+  const FoldProfile prof(GlottisGeometry{});
+  for (std::string first : {"translation", "rotation"})
+  {
+    TwoDofParameters p;
+    p.first_mode = first;
+    p.zeta1 = p.zeta2 = 0;
+    p.h0 = 0.1e-3;
+    TwoDofFold fold(prof, p);
+    const auto md = modes(fold.stiffness(), fold.mass());
+    CHECK(md.frequency_hz[0] == Approx(p.f1).epsilon(1e-9));
+    CHECK(md.frequency_hz[1] == Approx(p.f2).epsilon(1e-9));
+    // Which motion the lower mode is: its h share of the kinetic energy
+    const auto& s = md.shape[0];
+    const double eh = fold.mass()[0][0] * s[0] * s[0];
+    if (first == "translation")
+      CHECK(eh > 0.5);
+    else
+      CHECK(eh < 0.5);
+    fold.initialise({0, 0});
+    const double e0 = fold.energy();
+    for (int k = 0; k < 10000; ++k)
+    {
+      fold.step(1e-5, {0, 0});
+      fold.accept();
+    }
+    CHECK(std::abs(fold.energy() / e0 - 1) < 1e-10);
+  }
+}
+
+TEST_CASE("Hertz impact force", "[glottis]")
+{
+  const GlottisGeometry g;
+  const FoldProfile prof(g);
+  const ContactParameters cp;
+  const double kH
+      = 4.0 / 3.0 * cp.E / (1 - cp.nu * cp.nu) * std::sqrt(g.medial_radius);
+  CHECK(hertz_stiffness(cp, g.medial_radius) == Approx(kH));
+  const std::array<double, 2> axis = {4e-3, 3e-3};
+  // Open: no force
+  auto c = hertz_contact(cp, prof.edge_centres(), g.medial_radius,
+                         RigidMotion(0.1e-3, 0, axis), {0, 0});
+  CHECK(c.force == 0);
+  // Pure translation by g0 + δ: both edges penetrate by δ
+  const double delta = 0.05e-3;
+  c = hertz_contact(cp, prof.edge_centres(), g.medial_radius,
+                    RigidMotion(g.rest_gap + delta, 0, axis), {0, 0});
+  CHECK(c.penetration == Approx(delta).epsilon(1e-9));
+  CHECK(c.force == Approx(2 * kH * std::pow(delta, 1.5)).epsilon(1e-9));
+  CHECK(c.generalised[0] == Approx(-c.force).epsilon(1e-12));
+}
+
+TEST_CASE("Bernoulli load: closed-form cases", "[glottis]")
+{
+  const GlottisGeometry g;
+  const FoldProfile prof(g);
+  const std::array<double, 2> axis = {4e-3, 3e-3};
+  // Uniform pressure on the open surface: the force equals that on the wall
+  // chord it closes, p T L_g along +y, none along x
+  auto s = bernoulli_flow(prof, RigidMotion(0, 0, axis), 300, 300, 1.2, 1.2);
+  CHECK(s.Q == 0);
+  CHECK(s.force[1] == Approx(300 * g.fold_length * g.depth).epsilon(1e-9));
+  CHECK(std::abs(s.force[0]) < 1e-9 * s.force[1]);
+  // Flow: the jet leaves where the gap is k_s g0
+  s = bernoulli_flow(prof, RigidMotion(0, 0, axis), 800, 0, 1.2, 1.2);
+  CHECK(s.Q
+        == Approx(2 * g.depth * 1.2 * g.rest_gap * std::sqrt(2 * 800 / 1.2))
+               .epsilon(1e-12));
+  CHECK(s.separation_x > g.medial_x + g.medial_thickness / 2);
+  // Closed glottis: no flow
+  s = bernoulli_flow(prof, RigidMotion(g.rest_gap + 1e-5, 0, axis), 800, 0,
+                     1.2, 1.2);
+  CHECK(s.Q == 0);
+  CHECK(s.min_gap < 0);
+}
+
+TEST_CASE("Limit-cycle measures of a known waveform", "[glottis]")
+{
+  // g = a sin(2π f t) + c: open while sin > −c/a
+  const double f = 120, a = 1e-3, c = 0.5e-3;
+  std::vector<double> t, gap, Q;
+  for (int k = 0; k <= 100000; ++k)
+  {
+    t.push_back(k * 1e-6);
+    gap.push_back(a * std::sin(2 * M_PI * f * t.back()) + c);
+    Q.push_back(std::max(0.0, gap.back()));
+  }
+  const auto cs = cycle_stats(t, gap, Q, 0.0);
+  CHECK(cs.f0_hz == Approx(f).epsilon(1e-5));
+  CHECK(cs.open_quotient
+        == Approx(0.5 + std::asin(c / a) / M_PI).epsilon(1e-3));
+  CHECK(cs.closes_every_cycle);
+  CHECK(cs.q_peak == Approx(a + c).epsilon(1e-6));
+  CHECK(cs.closed_leakage == 0);
+}
+
+TEST_CASE("Reduced model: stable below onset, self-sustained closing "
+          "oscillation above it",
+          "[glottis]")
+{
+  const GlottisGeometry g;
+  const FoldProfile prof(g);
+  TwoDofParameters vf;
+  vf.h0 = 0.05e-3;
+  BernoulliGlottisParameters bp;
+  bp.dt = 2e-5;
+  bp.p_sub = 200;
+  auto low = linear_stability(prof, vf, bp);
+  REQUIRE(low.growth_rate.size() == 2);
+  CHECK(low.growth_rate[0] < 0);
+  bp.p_sub = 800;
+  auto high = linear_stability(prof, vf, bp);
+  REQUIRE(high.growth_rate.size() == 2);
+  CHECK(high.growth_rate[0] > 0);
+  // Time run at 800 Pa: a limit cycle closing in every cycle
+  BernoulliGlottis scene(prof, vf, ContactParameters{}, bp);
+  std::vector<double> t, gap, Q;
+  for (int k = 0; k < 15000; ++k) // 0.3 s
+  {
+    auto s = scene.step();
+    t.push_back(s.t);
+    gap.push_back(s.gap);
+    Q.push_back(s.Q);
+  }
+  const auto cs = cycle_stats(t, gap, Q, 0.15);
+  CHECK(cs.cycles >= 15);
+  CHECK(cs.closes_every_cycle);
+  CHECK(cs.f0_hz > 85);
+  CHECK(cs.f0_hz < 155);
+  CHECK(cs.open_quotient < 0.95);
+  // The linear analysis predicts the oscillation frequency of onset
+  CHECK(std::abs(cs.f0_hz / high.frequency_hz[0] - 1) < 0.1);
+}
