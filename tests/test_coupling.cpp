@@ -114,3 +114,31 @@ TEST_CASE("Coupling: IQN-ILS reuse of past time steps cuts the iterations; "
   CHECK_THROWS_WITH(loop.step(0.25, x, m.map(1.0)),
                     Catch::Contains("not converged at t = 0.25 s"));
 }
+
+TEST_CASE("Coupling: unknowns on one rank only (a lumped structure such as "
+          "the 2-DOF fold) converge on every rank without a hang",
+          "[coupling][mpi]")
+{
+  // Before the fix the accelerators decided from an empty local history
+  // whether to build a column, so the empty rank skipped collective dots
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const std::vector<double> D = {2.0, 0.5}, b = {1.0, -1.0};
+  for (std::string method : {"aitken", "iqn-ils"})
+  {
+    fsai::coupling::FixedPointCoupling loop(MPI_COMM_WORLD, params(method, 60));
+    std::vector<double> x(rank == 0 ? 2 : 0, 0.0);
+    auto r = loop.step(0.0, x,
+                       [&](std::span<const double> xi, std::span<double> Hx)
+                       {
+                         for (std::size_t i = 0; i < xi.size(); ++i)
+                           Hx[i] = b[i] - D[i] * xi[i];
+                       });
+    CHECK(r.converged);
+    if (rank == 0)
+    {
+      CHECK(x[0] == Approx(b[0] / (1 + D[0])).epsilon(1e-6));
+      CHECK(x[1] == Approx(b[1] / (1 + D[1])).epsilon(1e-6));
+    }
+  }
+}

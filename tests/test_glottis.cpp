@@ -48,8 +48,8 @@ TEST_CASE("Fold profile: shape, and mass properties by two methods",
   CHECK(mp.area == Approx(A).epsilon(2e-3));
   CHECK(mp.centroid[0] == Approx(sx / A).epsilon(2e-3));
   CHECK(mp.centroid[1] == Approx(sy / A).epsilon(2e-3));
-  const double Jc = 1000 * g.depth
-                    * (J - A * (std::pow(sx / A, 2) + std::pow(sy / A, 2)));
+  const double Jc
+      = 1000 * g.depth * (J - A * (std::pow(sx / A, 2) + std::pow(sy / A, 2)));
   CHECK(mp.inertia_centroid == Approx(Jc).epsilon(5e-3));
   CHECK(mp.mass == Approx(1000 * A * g.depth).epsilon(2e-3));
 }
@@ -143,8 +143,8 @@ TEST_CASE("Bernoulli load: closed-form cases", "[glottis]")
                .epsilon(1e-12));
   CHECK(s.separation_x > g.medial_x + g.medial_thickness / 2);
   // Closed glottis: no flow
-  s = bernoulli_flow(prof, RigidMotion(g.rest_gap + 1e-5, 0, axis), 800, 0,
-                     1.2, 1.2);
+  s = bernoulli_flow(prof, RigidMotion(g.rest_gap + 1e-5, 0, axis), 800, 0, 1.2,
+                     1.2);
   CHECK(s.Q == 0);
   CHECK(s.min_gap < 0);
 }

@@ -77,12 +77,18 @@ class Aitken : public fsai::coupling::Accelerator
 {
 public:
   Aitken(MPI_Comm comm, double omega0) : _comm(comm), _omega0(omega0) {}
-  void new_step() override { _r_prev.clear(); }
+  void new_step() override
+  {
+    _r_prev.clear();
+    _have_prev = false;
+  }
   void update(std::span<const double> x, std::span<const double> Hx,
               std::span<double> x_next) override
   {
     vec r = residual(x, Hx);
-    if (_r_prev.empty())
+    // A flag, not _r_prev.empty(): ranks without interface unknowns must
+    // join the same collective dots
+    if (!_have_prev)
       _omega = _omega0;
     else
     {
@@ -96,6 +102,7 @@ public:
     for (std::size_t i = 0; i < x.size(); ++i)
       x_next[i] = x[i] + _omega * r[i];
     _r_prev = std::move(r);
+    _have_prev = true;
   }
   double last_omega() const override { return _omega; }
 
@@ -103,6 +110,7 @@ private:
   MPI_Comm _comm;
   double _omega0, _omega = 0;
   vec _r_prev;
+  bool _have_prev = false;
 };
 
 class IQNILS : public fsai::coupling::Accelerator
@@ -120,12 +128,15 @@ public:
     while (int(_history.size()) > _p.reuse)
       _history.pop_back();
     _r_prev.clear();
+    _have_prev = false;
   }
   void update(std::span<const double> x, std::span<const double> Hx,
               std::span<double> x_next) override
   {
     vec r = residual(x, Hx);
-    if (!_r_prev.empty())
+    // A flag, not _r_prev.empty(): a rank without interface unknowns must
+    // still build the same columns (every norm and dot is collective)
+    if (_have_prev)
     {
       Column c{vec(r.size()), vec(r.size())};
       for (std::size_t i = 0; i < r.size(); ++i)
@@ -137,6 +148,7 @@ public:
     }
     _r_prev = r;
     _Hx_prev.assign(Hx.begin(), Hx.end());
+    _have_prev = true;
 
     // Columns: this step's, then the reused steps', newest first
     std::vector<const Column*> cols;
@@ -213,6 +225,7 @@ private:
   std::vector<Column> _step;
   std::deque<std::vector<Column>> _history;
   vec _r_prev, _Hx_prev;
+  bool _have_prev = false;
   double _omega = 0;
 };
 } // namespace

@@ -104,6 +104,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   _a1 = constant(0.0);
   _a2 = constant(0.0);
   _inv_dt = constant(1.0 / dt);
+  _p_in = constant(p.p_in);
   fsai::require(bnd.inlet_penalty.empty() or p.inlet_eps > 0,
                 "--fluid.inlet_eps", "> 0 for a penalty inlet", p.inlet_eps);
   std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
@@ -118,7 +119,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
          {"graddiv", constant(p.graddiv ? 1.0 : 0.0)},
          {"sigma_p", constant(p.sigma_p)},
          {"inv_eps", constant(p.inlet_eps > 0 ? 1.0 / p.inlet_eps : 0.0)},
-         {"p_in", constant(p.p_in)},
+         {"p_in", _p_in},
          {"p_out", constant(p.p_out)}};
   std::map<std::string, std::shared_ptr<const fem::Function<double>>> coeffs
       = {{"up", _up}, {"v_n", _v_n},   {"v_nn", _v_nn}, {"v_star", _v_star},

@@ -80,8 +80,15 @@ public:
   dolfinx::fem::Function<double>& mesh_velocity() { return *_w; }
   /// Body force per unit mass f (gravity, manufactured solutions)
   dolfinx::fem::Function<double>& body_force() { return *_f; }
+  /// Inlet reference pressure p_in of E11a (ramps, driving pressures)
+  void set_inlet_pressure(double p) { _p_in->value = {p}; }
   /// Porous indicator χ (DG0)
   dolfinx::fem::Function<double>& porous_indicator() { return *_chi; }
+  /// The same, shared (for output)
+  std::shared_ptr<const dolfinx::fem::Function<double>> porous_field() const
+  {
+    return _chi;
+  }
 
   /// Initial condition: the current velocity() becomes v_n = v_nn, and the
   /// next step is a BDF1 start
@@ -150,7 +157,7 @@ private:
   std::vector<std::int32_t> _map_v, _map_p; // collapsed → mixed dofs
   std::shared_ptr<dolfinx::fem::Function<double>> _up, _v, _p, _v_n, _v_nn,
       _v_star, _w, _v_in, _v_wall, _chi, _f;
-  std::shared_ptr<dolfinx::fem::Constant<double>> _a0, _a1, _a2, _inv_dt;
+  std::shared_ptr<dolfinx::fem::Constant<double>> _a0, _a1, _a2, _inv_dt, _p_in;
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
   std::vector<std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>>> _tags;

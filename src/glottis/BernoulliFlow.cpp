@@ -18,18 +18,19 @@ fsai::glottis::moved_surface(const FoldProfile& profile,
   return x;
 }
 
-fsai::glottis::BernoulliState fsai::glottis::bernoulli_flow(
-    const FoldProfile& profile, const RigidMotion& motion, double p_sub,
-    double p_sup, double rho, double separation_ratio)
+fsai::glottis::BernoulliState
+fsai::glottis::bernoulli_flow(const FoldProfile& profile,
+                              const RigidMotion& motion, double p_sub,
+                              double p_sup, double rho, double separation_ratio)
 {
   const auto x = moved_surface(profile, motion);
   const std::size_t n = x.size();
   const double Lg = profile.geometry().depth;
   BernoulliState s;
-  const auto imin = std::size_t(
-      std::min_element(x.begin(), x.end(), [](auto& a, auto& b)
-                       { return a[1] < b[1]; })
-      - x.begin());
+  const auto imin = std::size_t(std::min_element(x.begin(), x.end(),
+                                                 [](auto& a, auto& b)
+                                                 { return a[1] < b[1]; })
+                                - x.begin());
   s.min_gap = x[imin][1];
   const double dp = std::max(0.0, p_sub - p_sup);
   // Pressure at each surface point
@@ -73,8 +74,9 @@ fsai::glottis::BernoulliState fsai::glottis::bernoulli_flow(
   for (std::size_t i = 0; i + 1 < n; ++i)
   {
     const double tx = x[i + 1][0] - x[i][0], ty = x[i + 1][1] - x[i][1];
-    const double pm
-        = (i == isep and !std::isnan(p_seg_sep)) ? p_seg_sep : 0.5 * (p[i] + p[i + 1]);
+    const double pm = (i == isep and !std::isnan(p_seg_sep))
+                          ? p_seg_sep
+                          : 0.5 * (p[i] + p[i + 1]);
     const std::array<double, 2> f = {-pm * ty * Lg, pm * tx * Lg};
     s.force[0] += f[0];
     s.force[1] += f[1];

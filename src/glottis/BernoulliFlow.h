@@ -26,10 +26,10 @@ namespace fsai::glottis
 {
 struct BernoulliState
 {
-  double Q = 0;                  ///< full glottal flow [m³/s]
-  double min_gap = 0;            ///< smallest half-gap of the surface [m]
-  double separation_x = 0;       ///< x of the separation (contact) point
-  std::array<double, 2> force{}; ///< pressure force on the fold [N]
+  double Q = 0;                        ///< full glottal flow [m³/s]
+  double min_gap = 0;                  ///< smallest half-gap of the surface [m]
+  double separation_x = 0;             ///< x of the separation (contact) point
+  std::array<double, 2> force{};       ///< pressure force on the fold [N]
   std::array<double, 2> generalised{}; ///< (Q_h, Q_φ)
 };
 

@@ -54,8 +54,8 @@ fsai::glottis::Sample fsai::glottis::BernoulliGlottis::step()
     const auto q_old = _fold.q();
     _fold.step(dt, Q);
     s = evaluate(_fold.motion(), _fold.qdot(), Q);
-    const double dq = std::hypot(_fold.q()[0] - q_old[0],
-                                 1e-3 * (_fold.q()[1] - q_old[1]));
+    const double dq
+        = std::hypot(_fold.q()[0] - q_old[0], 1e-3 * (_fold.q()[1] - q_old[1]));
     const double scale = std::hypot(_fold.q()[0], 1e-3 * _fold.q()[1]) + 1e-6;
     if (it > 0 and dq <= _par.tol * scale)
       break;

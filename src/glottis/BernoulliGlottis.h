@@ -16,12 +16,12 @@ namespace fsai::glottis
 {
 struct BernoulliGlottisParameters
 {
-  double p_sub = 800;           ///< subglottal (lung) pressure [Pa]
-  double p_sup = 0;             ///< supraglottal pressure [Pa]
-  double rho = 1.2;             ///< air density [kg/m³]
+  double p_sub = 800;            ///< subglottal (lung) pressure [Pa]
+  double p_sup = 0;              ///< supraglottal pressure [Pa]
+  double rho = 1.2;              ///< air density [kg/m³]
   double separation_ratio = 1.2; ///< k_s
-  double dt = 1e-5;             ///< time step [s]
-  double tol = 1e-10;           ///< fixed point: |Δq| relative to |q| + 1e-6
+  double dt = 1e-5;              ///< time step [s]
+  double tol = 1e-10;            ///< fixed point: |Δq| relative to |q| + 1e-6
   int max_iterations = 50;
 };
 
@@ -32,10 +32,10 @@ struct BernoulliGlottisParameters
 /// frequencies of the coupled fold–flow system.
 struct StabilityResult
 {
-  std::array<double, 2> q_static{};  ///< (h, φ) at equilibrium
-  double gap_static = 0;             ///< half-gap at equilibrium [m]
-  std::vector<double> growth_rate;   ///< Re λ [1/s], largest first
-  std::vector<double> frequency_hz;  ///< |Im λ|/2π of the same λ
+  std::array<double, 2> q_static{}; ///< (h, φ) at equilibrium
+  double gap_static = 0;            ///< half-gap at equilibrium [m]
+  std::vector<double> growth_rate;  ///< Re λ [1/s], largest first
+  std::vector<double> frequency_hz; ///< |Im λ|/2π of the same λ
   bool closed = false; ///< the equilibrium closes the glottis (no analysis)
 };
 StabilityResult linear_stability(const FoldProfile& profile,

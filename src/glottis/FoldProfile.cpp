@@ -27,15 +27,15 @@ void fsai::glottis::GlottisGeometry::bind(fsai::common::Parameters& p)
 
 void fsai::glottis::GlottisGeometry::validate() const
 {
-  for (auto [name, v] :
-       {std::pair{"--glottis.half_height", half_height},
-        {"--glottis.inlet_length", inlet_length},
-        {"--glottis.outlet_length", outlet_length},
-        {"--glottis.fold_length", fold_length},
-        {"--glottis.medial_radius", medial_radius},
-        {"--glottis.medial_thickness", medial_thickness},
-        {"--glottis.rest_gap", rest_gap}, {"--glottis.depth", depth},
-        {"--glottis.taper", taper}})
+  for (auto [name, v] : {std::pair{"--glottis.half_height", half_height},
+                         {"--glottis.inlet_length", inlet_length},
+                         {"--glottis.outlet_length", outlet_length},
+                         {"--glottis.fold_length", fold_length},
+                         {"--glottis.medial_radius", medial_radius},
+                         {"--glottis.medial_thickness", medial_thickness},
+                         {"--glottis.rest_gap", rest_gap},
+                         {"--glottis.depth", depth},
+                         {"--glottis.taper", taper}})
   {
     fsai::require_positive(name, v);
   }
@@ -92,8 +92,10 @@ fsai::glottis::FoldProfile::FoldProfile(const GlottisGeometry& g, int n) : _g(g)
   double th2 = tangent_angle(B, _centres[1], R, false);
   while (th2 < bottom)
     th2 += 2 * M_PI;
-  auto on = [&](int c, double th) -> P2 {
-    return {_centres[c][0] + R * std::cos(th), _centres[c][1] + R * std::sin(th)};
+  auto on = [&](int c, double th) -> P2
+  {
+    return {_centres[c][0] + R * std::cos(th),
+            _centres[c][1] + R * std::sin(th)};
   };
   const P2 T1 = on(0, th1), T2 = on(1, th2);
   // Pieces: inferior line, inferior edge arc, flat medial surface,
@@ -191,9 +193,9 @@ fsai::glottis::FoldProfile::mass_properties(double density) const
   MassProperties m;
   m.area = A;
   m.centroid = {Sx / A, Sy / A};
-  const double polar = Iyy + Ixx
-                       - A * (m.centroid[0] * m.centroid[0]
-                              + m.centroid[1] * m.centroid[1]);
+  const double polar
+      = Iyy + Ixx
+        - A * (m.centroid[0] * m.centroid[0] + m.centroid[1] * m.centroid[1]);
   m.mass = density * A * _g.depth;
   m.inertia_centroid = density * polar * _g.depth;
   return m;
@@ -217,8 +219,8 @@ bool fsai::glottis::FoldProfile::contains(const std::array<double, 2>& X) const
   return in;
 }
 
-std::array<double, 2> fsai::glottis::RigidMotion::displacement(
-    const std::array<double, 2>& X) const
+std::array<double, 2>
+fsai::glottis::RigidMotion::displacement(const std::array<double, 2>& X) const
 {
   const double c = _c, s = _s;
   const double rx = X[0] - axis[0], ry = X[1] - axis[1];
@@ -233,8 +235,8 @@ fsai::glottis::RigidMotion::derivatives(const std::array<double, 2>& X) const
   return {{{0.0, -1.0}, {-s * rx - c * ry, c * rx - s * ry}}};
 }
 
-std::array<double, 2> fsai::glottis::RigidMotion::reference_of(
-    const std::array<double, 2>& x) const
+std::array<double, 2>
+fsai::glottis::RigidMotion::reference_of(const std::array<double, 2>& x) const
 {
   const double c = _c, s = _s;
   const double rx = x[0] - axis[0], ry = x[1] + h - axis[1];

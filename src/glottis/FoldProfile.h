@@ -47,16 +47,17 @@ namespace fsai::glottis
 /// Profile and channel geometry ([glottis] section), lengths in m
 struct GlottisGeometry
 {
-  double half_height = 8e-3;  ///< channel half-width H (trachea ≈ 16–20 mm)
-  double inlet_length = 20e-3;  ///< subglottal channel before the fold
-  double outlet_length = 40e-3; ///< supraglottal channel after the fold
-  double fold_length = 9e-3;    ///< T: fold extent along the wall (x)
-  double medial_x = 5.5e-3;      ///< x of the medial surface's centre
+  double half_height = 8e-3; ///< channel half-width H (trachea ≈ 16–20 mm)
+  double inlet_length = 20e-3;    ///< subglottal channel before the fold
+  double outlet_length = 40e-3;   ///< supraglottal channel after the fold
+  double fold_length = 9e-3;      ///< T: fold extent along the wall (x)
+  double medial_x = 5.5e-3;       ///< x of the medial surface's centre
   double medial_thickness = 4e-3; ///< T_m: flat medial surface length
-  double medial_radius = 1e-3; ///< R: edge curvature radius (Hertz radius)
-  double rest_gap = 0.2e-3;      ///< g0: rest half-gap
-  double depth = 18e-3;          ///< L_g: fold length (anterior–posterior)
-  double taper = 3e-3; ///< attachment band at the wall (fixed body; motion fades across it)
+  double medial_radius = 1e-3;    ///< R: edge curvature radius (Hertz radius)
+  double rest_gap = 0.2e-3;       ///< g0: rest half-gap
+  double depth = 18e-3;           ///< L_g: fold length (anterior–posterior)
+  double taper = 3e-3; ///< attachment band at the wall (fixed body; motion
+                       ///< fades across it)
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };
@@ -115,8 +116,8 @@ struct RigidMotion
       : h(h_), phi(phi_), axis(axis_), _c(std::cos(phi_)), _s(std::sin(phi_))
   {
   }
-  double h = 0, phi = 0;            ///< translation [m], rotation [rad]
-  std::array<double, 2> axis{};     ///< X_EA (reference)
+  double h = 0, phi = 0;        ///< translation [m], rotation [rad]
+  std::array<double, 2> axis{}; ///< X_EA (reference)
   /// Displacement u(X) of a reference point (untapered)
   std::array<double, 2> displacement(const std::array<double, 2>& X) const;
   /// ∂u/∂h and ∂u/∂φ at X (virtual displacements for generalised forces)

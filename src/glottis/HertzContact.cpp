@@ -18,8 +18,7 @@ void fsai::glottis::ContactParameters::validate() const
   fsai::require(b_H >= 0, "--contact.b_H", ">= 0", b_H);
 }
 
-double fsai::glottis::hertz_stiffness(const ContactParameters& p,
-                                      double radius)
+double fsai::glottis::hertz_stiffness(const ContactParameters& p, double radius)
 {
   return 4.0 / 3.0 * p.E / (1 - p.nu * p.nu) * std::sqrt(radius);
 }

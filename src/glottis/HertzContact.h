@@ -49,7 +49,6 @@ double hertz_stiffness(const ContactParameters& p, double radius);
 /// `radius`) moved by `motion` with velocities (ḣ, φ̇)
 ContactState hertz_contact(const ContactParameters& p,
                            const std::array<std::array<double, 2>, 2>& centres,
-                           double radius,
-                           const RigidMotion& motion,
+                           double radius, const RigidMotion& motion,
                            const std::array<double, 2>& qdot);
 } // namespace fsai::glottis

@@ -54,15 +54,15 @@ fsai::glottis::Modes2 fsai::glottis::modes(const Mat2& K, const Mat2& M)
       x = {A[0][1], lam[k] - A[0][0]};
     else if (A[1][0] != 0)
       x = {lam[k] - A[1][1], A[1][0]};
-    else if (std::abs(lam[k] - A[0][0]) <= std::abs(lam[k] - A[1][1]) and k == 0)
+    else if (std::abs(lam[k] - A[0][0]) <= std::abs(lam[k] - A[1][1])
+             and k == 0)
       x = {1, 0};
     else if (k == 0)
       x = {0, 1};
     else
       x = m.shape[0][0] != 0 ? Vec2{0, 1} : Vec2{1, 0};
-    const double n
-        = std::sqrt(x[0] * (M[0][0] * x[0] + M[0][1] * x[1])
-                    + x[1] * (M[1][0] * x[0] + M[1][1] * x[1]));
+    const double n = std::sqrt(x[0] * (M[0][0] * x[0] + M[0][1] * x[1])
+                               + x[1] * (M[1][0] * x[0] + M[1][1] * x[1]));
     m.shape[k] = {x[0] / n, x[1] / n};
     m.frequency_hz[k] = std::sqrt(std::max(0.0, lam[k])) / (2 * M_PI);
   }
@@ -80,10 +80,11 @@ fsai::glottis::TwoDofFold::TwoDofFold(const FoldProfile& profile,
   // Kinetic energy of u = (0, −h) + (R(φ) − I)(X − X_EA) at φ = 0:
   // M_hh = m, M_hφ = −∫ρ (x − x_EA) = −m dx, M_φφ = I_EA (parallel axes)
   const double S = -m * dx;
-  const double I = mp.inertia_centroid
-                   + m * (dx * dx
-                          + (mp.centroid[1] - _axis[1])
-                                * (mp.centroid[1] - _axis[1]));
+  const double I
+      = mp.inertia_centroid
+        + m
+              * (dx * dx
+                 + (mp.centroid[1] - _axis[1]) * (mp.centroid[1] - _axis[1]));
   _M = {{{m, S}, {S, I}}};
   // K = diag(k_h, k_φ) with eigenfrequencies ω1, ω2 of K x = ω² M x:
   // tr(M⁻¹K) = ω1² + ω2², det(M⁻¹K) = ω1² ω2², i.e. with a = k_h,

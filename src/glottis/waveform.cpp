@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-fsai::glottis::CycleStats
-fsai::glottis::cycle_stats(const std::vector<double>& t,
-                           const std::vector<double>& gap,
-                           const std::vector<double>& Q, double t_from)
+fsai::glottis::CycleStats fsai::glottis::cycle_stats(
+    const std::vector<double>& t, const std::vector<double>& gap,
+    const std::vector<double>& Q, double t_from, double g_closed)
 {
   CycleStats s;
   std::size_t i0 = 0;
@@ -43,7 +42,7 @@ fsai::glottis::cycle_stats(const std::vector<double>& t,
     {
       const double dt = t[i] - t[i - 1];
       total += dt;
-      if (gap[i] > 0)
+      if (gap[i] > g_closed)
         open += dt;
       else
         closed = true;
@@ -55,7 +54,7 @@ fsai::glottis::cycle_stats(const std::vector<double>& t,
   s.closes_every_cycle = every;
   double leak = 0;
   for (std::size_t i = up_i.front(); i < up_i.back(); ++i)
-    if (gap[i] <= 0)
+    if (gap[i] <= g_closed)
       leak = std::max(leak, std::abs(Q[i]));
   s.closed_leakage = s.q_peak > 0 ? leak / s.q_peak : 0;
   return s;

@@ -2,9 +2,10 @@
 //
 // Limit-cycle measures of the glottis scene from its time series: f0 from
 // the upward mean crossings of the gap g(t), and per cycle whether the
-// glottis closed (g ≤ 0), the open quotient (share of time with g > 0),
-// the peak flow and the closed-phase leakage (largest |Q| while closed,
-// relative to the peak).
+// glottis closed (g ≤ g_closed: the closure threshold g_min of the scene,
+// where the FE flow boundary stops and the porous region takes over), the
+// open quotient (share of time with g > g_closed), the peak flow and the
+// closed-phase leakage (largest |Q| while closed, relative to the peak).
 #pragma once
 #include <vector>
 
@@ -12,11 +13,11 @@ namespace fsai::glottis
 {
 struct CycleStats
 {
-  int cycles = 0;              ///< complete cycles in the window
-  double f0_hz = 0;            ///< 0 if fewer than 2 cycles
-  double open_quotient = 1;    ///< time share with g > 0
-  double q_peak = 0;           ///< largest Q [m³/s]
-  double closed_leakage = 0;   ///< max |Q| with g ≤ 0, over q_peak
+  int cycles = 0;            ///< complete cycles in the window
+  double f0_hz = 0;          ///< 0 if fewer than 2 cycles
+  double open_quotient = 1;  ///< time share with g > g_closed
+  double q_peak = 0;         ///< largest Q [m³/s]
+  double closed_leakage = 0; ///< max |Q| with g ≤ g_closed, over q_peak
   bool closes_every_cycle = false;
   double gap_amplitude = 0; ///< (max g − min g)/2 [m]
 };
@@ -24,5 +25,6 @@ struct CycleStats
 /// Statistics of the samples with t ≥ t_from (uniform or not)
 CycleStats cycle_stats(const std::vector<double>& t,
                        const std::vector<double>& gap,
-                       const std::vector<double>& Q, double t_from);
+                       const std::vector<double>& Q, double t_from,
+                       double g_closed = 0.0);
 } // namespace fsai::glottis

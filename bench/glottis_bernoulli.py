@@ -1,0 +1,83 @@
+#!/usr/bin/python3
+"""The reduced glottis model (fsai_glottis --flow bernoulli): phonation
+onset and limit cycle vs subglottal pressure, and the time-step convergence
+of the default run.
+
+1. Linear stability of the static equilibrium (--onset_sweep): the lowest
+   p_sub with a growing mode is the onset (flutter) pressure.
+2. Time runs (0.3 s, statistics over the second half) for each p_sub: f0,
+   open quotient, peak flow, closure in every cycle, wall time.
+3. Default p_sub at dt = 4e-5, 2e-5 (default), 1e-5.
+Writes bench/results/glottis_bernoulli.csv and glottis_bernoulli.png.
+
+usage: bench/glottis_bernoulli.py [BUILD_DIR]
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "build")
+exe = os.path.join(build, "demos", "fsai_glottis")
+out = os.path.join(here, "results")
+tmp = os.path.join(out, "run_glottis_bernoulli")
+
+pressures = [150, 200, 250, 300, 350, 400, 500, 600, 800, 1000, 1200, 1600, 2000]
+subprocess.run([exe, "--flow", "bernoulli", "--onset_sweep",
+                ",".join(str(p) for p in range(100, 1001, 10)), "--output", tmp],
+               check=True, stdout=subprocess.DEVNULL)
+with open(os.path.join(tmp, "onset.csv")) as f:
+    lin = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+onset = next((r for r in lin if r["growth_rate_1_per_s"] > 0), None)
+print(f"linear onset: p_sub = {onset['p_sub_Pa']:.0f} Pa at {onset['frequency_hz']:.1f} Hz"
+      if onset else "no onset below 1000 Pa")
+
+rows = []
+for dt, ps in [(2e-5, p) for p in pressures] + [(4e-5, 800), (1e-5, 800)]:
+    subprocess.run([exe, "--flow", "bernoulli", "--p-sub", str(ps), "--dt", str(dt),
+                    "--duration", "0.3", "--output", tmp], check=True,
+                   stdout=subprocess.DEVNULL)
+    with open(os.path.join(tmp, "summary.json")) as f:
+        s = json.load(f)
+    rows.append({"p_sub_Pa": ps, "dt_s": dt, "f0_hz": s["f0_hz"],
+                 "open_quotient": s["open_quotient"], "q_peak_m3s": s["q_peak_m3s"],
+                 "closes_every_cycle": int(s["closes_every_cycle"]),
+                 "gap_amplitude_m": s["gap_amplitude_m"],
+                 "max_penetration_m": s["max_penetration_m"],
+                 "wall_per_sim_s": s["wall_per_sim_s"]})
+with open(os.path.join(out, "glottis_bernoulli.csv"), "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(rows[0]))
+    w.writeheader()
+    w.writerows(rows)
+print("| p_sub [Pa] | dt [s] | f0 [Hz] | OQ | Q_peak [l/s] | closes | gap amp [mm] | "
+      "max δ [mm] | wall s / sim s |")
+print("|---|---|---|---|---|---|---|---|---|")
+for r in rows:
+    print(f"| {r['p_sub_Pa']} | {r['dt_s']:g} | {r['f0_hz']:.2f} | {r['open_quotient']:.3f} | "
+          f"{1e3 * r['q_peak_m3s']:.3f} | {'yes' if r['closes_every_cycle'] else 'no'} | "
+          f"{1e3 * r['gap_amplitude_m']:.3f} | {1e3 * r['max_penetration_m']:.3f} | "
+          f"{r['wall_per_sim_s']:.2f} |")
+try:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 3, figsize=(13, 3.8))
+    ax[0].plot([r["p_sub_Pa"] for r in lin], [r["growth_rate_1_per_s"] for r in lin])
+    ax[0].axhline(0, color="k", lw=0.5)
+    ax[0].set(xlabel="p_sub [Pa]", ylabel="growth rate [1/s]",
+              title="linear stability of the rest state")
+    rr = [r for r in rows if r["dt_s"] == 2e-5]
+    ax[1].plot([r["p_sub_Pa"] for r in rr], [r["f0_hz"] for r in rr], "o-")
+    ax[1].set(xlabel="p_sub [Pa]", ylabel="f0 [Hz]", title="limit cycle f0")
+    ax[2].plot([r["p_sub_Pa"] for r in rr], [1e3 * r["q_peak_m3s"] for r in rr], "o-",
+               label="peak flow [l/s]")
+    ax[2].plot([r["p_sub_Pa"] for r in rr], [r["open_quotient"] for r in rr], "s-",
+               label="open quotient")
+    ax[2].set(xlabel="p_sub [Pa]", title="flow")
+    ax[2].legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "glottis_bernoulli.png"), dpi=110)
+except ImportError:
+    print("matplotlib missing: no chart")

@@ -1,0 +1,258 @@
+// Copyright (C) 2026 fsai developers
+#include "FlowGlottis.h"
+#include "BernoulliFlow.h"
+#include <cmath>
+#include <common/Parameters.h>
+#include <common/errors.h>
+#include <common/timer.h>
+#include <dolfinx/fem/utils.h>
+#include <mesh/glottis_channel.h>
+
+namespace
+{
+constexpr double lever = 1e-3; // ℓ: coupling variable (h, ℓφ) [m]
+}
+
+void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
+{
+  p.add("fe.ramp", ramp, "time over which p_sub ramps up [s]");
+  p.add("fe.h_far", h_far, "mesh size away from the fold [m]");
+  p.add("fe.h_gap", h_gap, "mesh size on the fold [m]");
+  p.add("closure.g_min", g_min,
+        "closest approach of the fluid boundary to the axis [m]");
+}
+
+void fsai::glottis::FlowGlottisParameters::validate() const
+{
+  fsai::require_positive("--p-sub", p_sub);
+  fsai::require(ramp >= 0, "--fe.ramp", ">= 0", ramp);
+  fsai::require_positive("--dt", dt);
+  fsai::require_positive("--fe.h_far", h_far);
+  fsai::require_positive("--fe.h_gap", h_gap);
+  fsai::require_positive("--closure.g_min", g_min);
+}
+
+fsai::glottis::FlowGlottis::FlowGlottis(
+    MPI_Comm comm, const FoldProfile& profile, const TwoDofParameters& vf,
+    const ContactParameters& contact, const FlowGlottisParameters& p,
+    fluid::FluidParameters fp, const ale::MeshMotionParameters& ap,
+    const coupling::CouplingParameters& cp, const std::string& coupling_csv)
+    : _comm(comm), _profile(profile), _contact(contact), _par(p),
+      _fold(profile, vf)
+{
+  p.validate();
+  const auto& g = profile.geometry();
+  fsai::require(p.g_min < g.rest_gap, "--closure.g_min", "< the rest gap",
+                p.g_min);
+  _mesh = mesh::glottis_channel(comm, profile, p.h_far, p.h_gap);
+  auto find = [&](const char* name)
+  { return _mesh.facet_tags->find(_mesh.facet_tag(name)); };
+  _fold_facets = find("fold");
+  _inlet_facets = find("inlet");
+  fluid::FluidBoundaries fb;
+  fb.inlet_penalty = _inlet_facets;
+  fb.outlet = find("outlet");
+  fb.walls = find("wall");
+  fb.walls.insert(fb.walls.end(), _fold_facets.begin(), _fold_facets.end());
+  fb.symmetry = find("axis");
+  fp.p_in = 0; // set_inlet_pressure() ramps it
+  _flow = std::make_unique<fluid::FluidSolver>(_mesh.mesh, fb, fp, p.dt);
+  ale::MeshMotionBoundaries mb;
+  mb.interface = _fold_facets;
+  mb.fixed = _inlet_facets;
+  for (const char* name : {"outlet", "wall"})
+  {
+    auto f = find(name);
+    mb.fixed.insert(mb.fixed.end(), f.begin(), f.end());
+  }
+  mb.slip = {{1, fb.symmetry}};
+  _motion = std::make_unique<ale::MeshMotion>(_mesh.mesh,
+                                              _flow->velocity_space(), mb, ap);
+  _loop = std::make_unique<coupling::FixedPointCoupling>(comm, cp,
+                                                         coupling_csv);
+  const auto V = _flow->velocity_space();
+  _F = std::make_shared<dolfinx::fem::Function<double>>(V);
+  _fold_dofs = dolfinx::fem::locate_dofs_topological(*V, 1, _fold_facets);
+  const std::vector<double> X = V->tabulate_dof_coordinates(false);
+  for (auto d : _fold_dofs)
+    _fold_X.push_back({X[3 * d], X[3 * d + 1]});
+  // Cells that can become porous: reference midpoint within the fold's
+  // x-extent, below the attachment band
+  const auto& mesh = *_mesh.mesh;
+  const auto x = mesh.geometry().x();
+  const std::int32_t ncells
+      = mesh.topology().index_map(2)->size_local()
+        + mesh.topology().index_map(2)->num_ghosts();
+  for (std::int32_t c = 0; c < ncells; ++c)
+  {
+    auto nodes = mesh.geometry().dofmap().links(c);
+    double cx = 0, cy = 0;
+    for (auto n : nodes)
+    {
+      cx += x[3 * n] / 3;
+      cy += x[3 * n + 1] / 3;
+    }
+    if (cx > 0 and cx < g.fold_length and cy < g.half_height - g.taper)
+      _candidates.push_back(c);
+  }
+  _q_n = _q_nn = _fold.q();
+  std::array<double, 2> Q{0, 0};
+  _fold.initialise(Q);
+}
+
+std::int64_t fsai::glottis::FlowGlottis::cells() const
+{
+  return _mesh.mesh->topology().index_map(2)->size_global();
+}
+
+void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
+{
+  // The fold surface moves with the tapered rigid motion, but no closer to
+  // the axis than g_min
+  auto a = _motion->interface_displacement().x()->mutable_array();
+  for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
+  {
+    const auto& X = _fold_X[i];
+    const double w = _profile.weight(X);
+    auto u = m.displacement(X);
+    u = {w * u[0], w * u[1]};
+    if (X[1] + u[1] < _par.g_min)
+      u[1] = _par.g_min - X[1];
+    a[2 * _fold_dofs[i]] = u[0];
+    a[2 * _fold_dofs[i] + 1] = u[1];
+  }
+}
+
+void fsai::glottis::FlowGlottis::mark_porous(const RigidMotion& m)
+{
+  // χ = 1 in the cells whose (current) midpoint lies inside the moved fold
+  const auto& mesh = *_mesh.mesh;
+  const auto x = mesh.geometry().x();
+  auto& chi = _flow->porous_indicator();
+  auto c_arr = chi.x()->mutable_array();
+  const auto dofmap = chi.function_space()->dofmap();
+  for (auto c : _candidates)
+  {
+    auto nodes = mesh.geometry().dofmap().links(c);
+    std::array<double, 2> mid{0, 0};
+    for (auto n : nodes)
+    {
+      mid[0] += x[3 * n] / 3;
+      mid[1] += x[3 * n + 1] / 3;
+    }
+    c_arr[dofmap->cell_dofs(c)[0]]
+        = _profile.contains(m.reference_of(mid)) ? 1.0 : 0.0;
+  }
+}
+
+std::array<double, 2>
+fsai::glottis::FlowGlottis::evaluate(double t, const std::array<double, 2>& q,
+                                     Sample& s)
+{
+  const RigidMotion m(q[0], q[1], _fold.axis());
+  // 1. fold boundary and mesh; the fold wall moves with the mesh
+  set_boundary(m);
+  _motion->move(t);
+  _motion->velocity(_flow->mesh_velocity(), _par.dt);
+  {
+    auto w = _flow->mesh_velocity().x()->array();
+    auto gw = _flow->wall_velocity().x()->mutable_array();
+    for (auto d : _fold_dofs)
+      for (int k = 0; k < 2; ++k)
+        gw[2 * d + k] = w[2 * d + k];
+  }
+  // 2. porous region, flow
+  mark_porous(m);
+  _flow->restore_state();
+  _flow->step();
+  // 3. generalised forces of the fluid's nodal forces (per unit depth, so
+  //    times L_g) by the tapered virtual displacements
+  _flow->nodal_forces(_fold_facets, *_F);
+  const double Lg = _profile.geometry().depth;
+  const auto F = _F->x()->array();
+  const std::int32_t owned
+      = _flow->velocity_space()->dofmap()->index_map->size_local();
+  std::array<double, 4> loc{0, 0, 0, 0}; // Q_h, Q_φ, F_x, F_y
+  for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
+  {
+    const auto d = _fold_dofs[i];
+    if (d >= owned)
+      continue;
+    const double f[2] = {Lg * F[2 * d], Lg * F[2 * d + 1]};
+    const double w = _profile.weight(_fold_X[i]);
+    const auto du = m.derivatives(_fold_X[i]);
+    loc[0] += w * (f[0] * du[0][0] + f[1] * du[0][1]);
+    loc[1] += w * (f[0] * du[1][0] + f[1] * du[1][1]);
+    loc[2] += f[0];
+    loc[3] += f[1];
+  }
+  std::array<double, 4> glob;
+  MPI_Allreduce(loc.data(), glob.data(), 4, MPI_DOUBLE, MPI_SUM, _comm);
+  // 4. contact and the fold step
+  const auto c = hertz_contact(_contact, _profile.edge_centres(),
+                               _profile.geometry().medial_radius, m,
+                               _fold.qdot());
+  _fold.step(_par.dt, {glob[0] + c.generalised[0], glob[1] + c.generalised[1]});
+  s.drag = glob[2];
+  s.lift = glob[3];
+  s.moment = glob[1];
+  s.contact_force = c.force;
+  s.penetration = c.penetration;
+  return _fold.q();
+}
+
+fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
+{
+  common::ScopedTimer timer("glottis: fe step");
+  const double t = _t + _par.dt;
+  const double ramp
+      = _par.ramp > 0 and t < _par.ramp ? 0.5 * (1 - std::cos(M_PI * t / _par.ramp))
+                                        : 1.0;
+  _flow->set_inlet_pressure(ramp * _par.p_sub);
+  _flow->save_state();
+  // The coupling variable (h, ℓφ) lives on rank 0; the map broadcasts it
+  int rank;
+  MPI_Comm_rank(_comm, &rank);
+  std::vector<double> x;
+  if (rank == 0)
+  {
+    for (int k = 0; k < 2; ++k)
+    {
+      const double qk = _steps >= 2 ? 2 * _q_n[k] - _q_nn[k] : _q_n[k];
+      x.push_back(k == 0 ? qk : lever * qk);
+    }
+  }
+  Sample s;
+  auto rep = _loop->step(
+      t, x,
+      [&](std::span<const double> xi, std::span<double> Hx)
+      {
+        std::array<double, 2> q{0, 0};
+        if (rank == 0)
+          q = {xi[0], xi[1] / lever};
+        MPI_Bcast(q.data(), 2, MPI_DOUBLE, 0, _comm);
+        const auto qn = evaluate(t, q, s);
+        if (rank == 0)
+        {
+          Hx[0] = qn[0];
+          Hx[1] = lever * qn[1];
+        }
+      });
+  _fold.accept();
+  _motion->advance();
+  _q_nn = _q_n;
+  _q_n = _fold.q();
+  ++_steps;
+  _t = t;
+  s.t = t;
+  s.h = _fold.q()[0];
+  s.phi = _fold.q()[1];
+  s.iterations = rep.iterations;
+  s.Q = -2 * _profile.geometry().depth * _flow->flow_rate(_inlet_facets);
+  const auto surf = moved_surface(_profile, _fold.motion());
+  s.gap = 1e300;
+  for (auto& p : surf)
+    s.gap = std::min(s.gap, p[1]);
+  s.closed = s.gap <= _par.g_min;
+  return s;
+}

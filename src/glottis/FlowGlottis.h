@@ -1,0 +1,98 @@
+// Copyright (C) 2026 fsai developers
+//
+// The glottis scene with the FE flow (shared/DESIGN.md §2 "Glottis
+// closure", paper §2.5): stabilised P1/P1 ALE Navier–Stokes (FluidSolver) in
+// the symmetric half-channel (mesh::glottis_channel), driven by the
+// subglottal pressure through the E11a inlet (ε large: total pressure
+// p_sub), directional do-nothing outlet, symmetry axis y = 0; the 2-DOF
+// fold (TwoDofFold) moves the fold boundary; Hertz impact (HertzContact).
+//
+// Closure model: the fluid boundary follows the fold but never comes closer
+// to the axis than g_min (nodes below g_min are held at y = g_min), so the
+// fluid mesh never collapses; the cells the fold would occupy (inside the
+// moved rigid profile) form the porous region Ω^P_t, marked cell-wise
+// (χ = 1) each coupling iteration, where the term σ_P χ (v − w) stops the
+// flow. Too small σ_P leaks, too large σ_P or g_min → 0 ruins the
+// conditioning (--fluid.sigma_p, --closure.g_min sweeps in bench/).
+//
+// Each time step is a strongly coupled fixed point on (h, ℓφ) (ℓ = 1 mm
+// scales the rotation to a displacement): move the fold boundary and the
+// mesh (MeshMotion), update χ, one flow step, generalised forces from the
+// fluid's nodal forces on the fold (consistent, E12) with the tapered
+// virtual displacements, plus Hertz, one Newmark step of the fold
+// (FixedPointCoupling: Aitken or IQN-ILS, as for Turek–Hron).
+#pragma once
+#include "FoldProfile.h"
+#include "HertzContact.h"
+#include "Sample.h"
+#include "TwoDofFold.h"
+#include <ale/MeshMotion.h>
+#include <coupling/FixedPointCoupling.h>
+#include <fluid/FluidSolver.h>
+#include <memory>
+#include <mesh/MeshData.h>
+#include <mpi.h>
+
+namespace fsai::common
+{
+class Parameters;
+}
+
+namespace fsai::glottis
+{
+/// [fe] and [closure] sections
+struct FlowGlottisParameters
+{
+  double p_sub = 800;     ///< subglottal pressure [Pa]
+  double ramp = 5e-3;     ///< p_sub ramps up smoothly over this time [s]
+  double dt = 2e-5;       ///< time step [s]
+  double h_far = 0.5e-3;  ///< mesh size away from the fold [m]
+  double h_gap = 0.05e-3; ///< mesh size on the fold [m]
+  double g_min = 0.02e-3; ///< closest approach of the fluid boundary [m]
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+};
+
+class FlowGlottis
+{
+public:
+  FlowGlottis(MPI_Comm comm, const FoldProfile& profile,
+              const TwoDofParameters& vf, const ContactParameters& contact,
+              const FlowGlottisParameters& p, fluid::FluidParameters fp,
+              const ale::MeshMotionParameters& ap,
+              const coupling::CouplingParameters& cp,
+              const std::string& coupling_csv);
+  /// One coupled time step
+  Sample step();
+  const TwoDofFold& fold() const { return _fold; }
+  fluid::FluidSolver& flow() { return *_flow; }
+  const ale::MeshMotion& motion() const { return *_motion; }
+  std::int64_t flow_dofs() const { return _flow->dofs(); }
+  std::int64_t cells() const;
+
+private:
+  /// The coupling map: fold state guess → new fold state
+  std::array<double, 2> evaluate(double t, const std::array<double, 2>& q,
+                                 Sample& s);
+  void set_boundary(const RigidMotion& m);
+  void mark_porous(const RigidMotion& m);
+
+  MPI_Comm _comm;
+  const FoldProfile& _profile;
+  ContactParameters _contact;
+  FlowGlottisParameters _par;
+  TwoDofFold _fold;
+  mesh::MeshData _mesh;
+  std::vector<std::int32_t> _fold_facets, _inlet_facets;
+  std::unique_ptr<fluid::FluidSolver> _flow;
+  std::unique_ptr<ale::MeshMotion> _motion;
+  std::unique_ptr<coupling::FixedPointCoupling> _loop;
+  std::shared_ptr<dolfinx::fem::Function<double>> _F; // nodal forces
+  std::vector<std::int32_t> _fold_dofs; // velocity-space blocks on the fold
+  std::vector<std::array<double, 2>> _fold_X; // their reference coordinates
+  std::vector<std::int32_t> _candidates; // cells that may turn porous
+  std::array<double, 2> _q_n{}, _q_nn{};
+  int _steps = 0;
+  double _t = 0;
+};
+} // namespace fsai::glottis

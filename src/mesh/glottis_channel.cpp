@@ -1,0 +1,66 @@
+// Copyright (C) 2026 fsai developers
+#include "glottis_channel.h"
+#include "gmsh_model.h"
+#include <common/errors.h>
+#include <glottis/FoldProfile.h>
+#include <gmsh.h>
+
+fsai::mesh::MeshData
+fsai::mesh::glottis_channel(MPI_Comm comm,
+                            const glottis::FoldProfile& profile, double h_far,
+                            double h_gap)
+{
+  const auto& g = profile.geometry();
+  fsai::require(h_gap > 0 and h_gap <= g.rest_gap, "--fe.h_gap",
+                "in (0, rest_gap]", h_gap);
+  fsai::require(h_far >= h_gap and h_far <= g.half_height / 2, "--fe.h_far",
+                "in [h_gap, half_height/2]", h_far);
+  return build_with_gmsh(
+      comm, 2,
+      [&]()
+      {
+        namespace geo = gmsh::model::geo;
+        gmsh::model::add("glottis_channel");
+        const double H = g.half_height, x0 = -g.inlet_length,
+                     x1 = g.fold_length + g.outlet_length;
+        const int p_in0 = geo::addPoint(x0, 0, 0);
+        const int p_out0 = geo::addPoint(x1, 0, 0);
+        const int p_out1 = geo::addPoint(x1, H, 0);
+        const int p_sup = geo::addPoint(g.fold_length, H, 0);
+        // The fold surface, superior attachment to inferior (the domain
+        // boundary runs counter-clockwise), through every 2nd profile point
+        const auto& pts = profile.points();
+        std::vector<int> spline = {p_sup};
+        for (int i = int(pts.size()) - 3; i >= 2; i -= 2)
+          spline.push_back(geo::addPoint(pts[i][0], pts[i][1], 0));
+        const int p_inf = geo::addPoint(0, H, 0);
+        spline.push_back(p_inf);
+        const int p_in1 = geo::addPoint(x0, H, 0);
+        const int axis = geo::addLine(p_in0, p_out0);
+        const int outlet = geo::addLine(p_out0, p_out1);
+        const int wall_sup = geo::addLine(p_out1, p_sup);
+        const int fold = geo::addSpline(spline);
+        const int wall_inf = geo::addLine(p_inf, p_in1);
+        const int inlet = geo::addLine(p_in1, p_in0);
+        const int loop
+            = geo::addCurveLoop({axis, outlet, wall_sup, fold, wall_inf, inlet});
+        const int surface = geo::addPlaneSurface({loop});
+        geo::synchronize();
+        int id = 1;
+        for (auto [name, tags] :
+             {std::pair<const char*, std::vector<int>>{"inlet", {inlet}},
+              {"outlet", {outlet}},
+              {"axis", {axis}},
+              {"wall", {wall_sup, wall_inf}},
+              {"fold", {fold}}})
+        {
+          gmsh::model::addPhysicalGroup(1, tags, id);
+          gmsh::model::setPhysicalName(1, id++, name);
+        }
+        gmsh::model::addPhysicalGroup(2, {surface}, 1);
+        gmsh::model::setPhysicalName(2, 1, "fluid");
+        size_near_curves({fold}, h_gap, h_far, 3e-3, 1000);
+        gmsh::option::setNumber("Mesh.Algorithm", 6);
+        gmsh::model::mesh::generate(2);
+      });
+}
