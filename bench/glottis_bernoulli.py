@@ -7,7 +7,7 @@ of the default run.
    p_sub with a growing mode is the onset (flutter) pressure.
 2. Time runs (0.3 s, statistics over the second half) for each p_sub: f0,
    open quotient, peak flow, closure in every cycle, wall time.
-3. Default p_sub at dt = 4e-5, 2e-5 (default), 1e-5.
+3. Default p_sub (1000 Pa) at dt = 4e-5, 2e-5 (default), 1e-5.
 Writes bench/results/glottis_bernoulli.csv and glottis_bernoulli.png.
 
 usage: bench/glottis_bernoulli.py [BUILD_DIR]
@@ -24,18 +24,18 @@ exe = os.path.join(build, "demos", "fsai_glottis")
 out = os.path.join(here, "results")
 tmp = os.path.join(out, "run_glottis_bernoulli")
 
-pressures = [150, 200, 250, 300, 350, 400, 500, 600, 800, 1000, 1200, 1600, 2000]
+pressures = [400, 500, 600, 700, 800, 900, 1000, 1200, 1600, 2000, 2500]
 subprocess.run([exe, "--flow", "bernoulli", "--onset_sweep",
-                ",".join(str(p) for p in range(100, 1001, 10)), "--output", tmp],
+                ",".join(str(p) for p in range(100, 2001, 10)), "--output", tmp],
                check=True, stdout=subprocess.DEVNULL)
 with open(os.path.join(tmp, "onset.csv")) as f:
     lin = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
 onset = next((r for r in lin if r["growth_rate_1_per_s"] > 0), None)
 print(f"linear onset: p_sub = {onset['p_sub_Pa']:.0f} Pa at {onset['frequency_hz']:.1f} Hz"
-      if onset else "no onset below 1000 Pa")
+      if onset else "no onset below 2000 Pa")
 
 rows = []
-for dt, ps in [(2e-5, p) for p in pressures] + [(4e-5, 800), (1e-5, 800)]:
+for dt, ps in [(2e-5, p) for p in pressures] + [(4e-5, 1000), (1e-5, 1000)]:
     subprocess.run([exe, "--flow", "bernoulli", "--p-sub", str(ps), "--dt", str(dt),
                     "--duration", "0.3", "--output", tmp], check=True,
                    stdout=subprocess.DEVNULL)

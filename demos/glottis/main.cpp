@@ -43,7 +43,7 @@ struct SceneParameters
   std::string output = "results/fsai_glottis";
   std::string flow = "bernoulli";
   std::string fold = "2dof";
-  double p_sub = 800;     // [Pa]
+  double p_sub = 1000;    // [Pa]
   double duration = 0.25; // [s]
   double dt = 2e-5;       // [s]
   double rho = 1.2;       // [kg/m³]
@@ -108,8 +108,10 @@ int main(int argc, char* argv[])
         // move; Jacobian stiffening (6 solves) is 60x dearer per move and
         // size stiffening inverted a gap cell at t = 24.2 ms (g = 0.066 mm)
         ap.stiffening = "none";
-        fp.solver = "iterative"; // 16k dofs: 26 ms vs MUMPS 34 ms per solve
-        fp.velocity_pc = "ilu";
+        // MUMPS: the fieldsplit iterative solver (26 ms vs 34 ms per solve)
+        // stalls (KSP_DIVERGED_ITS) once the porous term σ_P χ ≫ ρ/Δt
+        // switches on in the closing gap
+        fp.solver = "direct";
         fsai::coupling::CouplingParameters cpl;
         cpl.atol = 1e-11; // [m] on (h, 1 mm·φ)
         fsai::common::Parameters params(rt.program(),
@@ -202,10 +204,12 @@ int main(int argc, char* argv[])
         const auto& fold = reduced ? reduced->fold() : fem->fold();
         const auto md = fsai::glottis::modes(fold.stiffness(), fold.mass());
         fsai::log::info(
-            "fold: area {:.2f} mm², mass {:.3f} g, I_EA {:.3e} kg m², "
+            "fold: area {:.2f} mm², centroid ({:.3f}, {:.3f}) mm, mass {:.3f} "
+            "g, I_EA {:.3e} kg m², "
             "k_h {:.1f} N/m, k_phi {:.3e} N m; in-vacuo {:.1f} / {:.1f} Hz; "
             "Hertz k_H {:.3e} N/m^1.5",
-            mp.area * 1e6, fold.mass()[0][0] * 1e3, fold.mass()[1][1],
+            mp.area * 1e6, mp.centroid[0] * 1e3, mp.centroid[1] * 1e3,
+            fold.mass()[0][0] * 1e3, fold.mass()[1][1],
             fold.stiffness()[0][0], fold.stiffness()[1][1], md.frequency_hz[0],
             md.frequency_hz[1],
             fsai::glottis::hertz_stiffness(cp, geo.medial_radius));

@@ -43,7 +43,7 @@ namespace fsai::glottis
 /// [fe] and [closure] sections
 struct FlowGlottisParameters
 {
-  double p_sub = 800;     ///< subglottal pressure [Pa]
+  double p_sub = 1000;    ///< subglottal pressure [Pa]
   double ramp = 5e-3;     ///< p_sub ramps up smoothly over this time [s]
   double dt = 2e-5;       ///< time step [s]
   double h_far = 0.5e-3;  ///< mesh size away from the fold [m]

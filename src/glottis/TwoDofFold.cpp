@@ -13,6 +13,8 @@ void fsai::glottis::TwoDofParameters::bind(fsai::common::Parameters& p)
   p.add("vf.zeta2", zeta2, "modal damping ratio of mode 2");
   p.add("vf.axis_dx", axis_dx,
         "elastic axis x relative to the profile centroid [m]");
+  p.add("vf.axis_dy", axis_dy,
+        "elastic axis y relative to the profile centroid [m]");
   p.add_choice("vf.first_mode", first_mode, {"translation", "rotation"},
                "motion of the lower eigenfrequency f1");
   p.add("vf.h0", h0, "initial displacement h (perturbation) [m]");
@@ -74,7 +76,7 @@ fsai::glottis::TwoDofFold::TwoDofFold(const FoldProfile& profile,
 {
   p.validate();
   const MassProperties mp = profile.mass_properties(p.density);
-  _axis = {mp.centroid[0] + p.axis_dx, mp.centroid[1]};
+  _axis = {mp.centroid[0] + p.axis_dx, mp.centroid[1] + p.axis_dy};
   const double m = mp.mass;
   const double dx = mp.centroid[0] - _axis[0];
   // Kinetic energy of u = (0, −h) + (R(φ) − I)(X − X_EA) at φ = 0:
