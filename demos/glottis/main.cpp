@@ -43,7 +43,7 @@ struct SceneParameters
   std::string output = "results/fsai_glottis";
   std::string flow = "bernoulli";
   std::string fold = "2dof";
-  double p_sub = 1000;    // [Pa]
+  double p_sub = 800;     // [Pa]
   double duration = 0.25; // [s]
   double dt = 2e-5;       // [s]
   double rho = 1.2;       // [kg/m³]
@@ -209,9 +209,8 @@ int main(int argc, char* argv[])
             "k_h {:.1f} N/m, k_phi {:.3e} N m; in-vacuo {:.1f} / {:.1f} Hz; "
             "Hertz k_H {:.3e} N/m^1.5",
             mp.area * 1e6, mp.centroid[0] * 1e3, mp.centroid[1] * 1e3,
-            fold.mass()[0][0] * 1e3, fold.mass()[1][1],
-            fold.stiffness()[0][0], fold.stiffness()[1][1], md.frequency_hz[0],
-            md.frequency_hz[1],
+            fold.mass()[0][0] * 1e3, fold.mass()[1][1], fold.stiffness()[0][0],
+            fold.stiffness()[1][1], md.frequency_hz[0], md.frequency_hz[1],
             fsai::glottis::hertz_stiffness(cp, geo.medial_radius));
         summary.set("fold_mass_kg", fold.mass()[0][0]);
         summary.set(

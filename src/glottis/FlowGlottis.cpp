@@ -68,8 +68,8 @@ fsai::glottis::FlowGlottis::FlowGlottis(
   mb.slip = {{1, fb.symmetry}};
   _motion = std::make_unique<ale::MeshMotion>(_mesh.mesh,
                                               _flow->velocity_space(), mb, ap);
-  _loop = std::make_unique<coupling::FixedPointCoupling>(comm, cp,
-                                                         coupling_csv);
+  _loop
+      = std::make_unique<coupling::FixedPointCoupling>(comm, cp, coupling_csv);
   const auto V = _flow->velocity_space();
   _F = std::make_shared<dolfinx::fem::Function<double>>(V);
   _fold_dofs = dolfinx::fem::locate_dofs_topological(*V, 1, _fold_facets);
@@ -80,9 +80,8 @@ fsai::glottis::FlowGlottis::FlowGlottis(
   // x-extent, below the attachment band
   const auto& mesh = *_mesh.mesh;
   const auto x = mesh.geometry().x();
-  const std::int32_t ncells
-      = mesh.topology().index_map(2)->size_local()
-        + mesh.topology().index_map(2)->num_ghosts();
+  const std::int32_t ncells = mesh.topology().index_map(2)->size_local()
+                              + mesh.topology().index_map(2)->num_ghosts();
   for (std::int32_t c = 0; c < ncells; ++c)
   {
     auto nodes = mesh.geometry().dofmap().links(c);
@@ -108,7 +107,12 @@ std::int64_t fsai::glottis::FlowGlottis::cells() const
 void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
 {
   // The fold surface moves with the tapered rigid motion, but no closer to
-  // the axis than g_min
+  // the axis than g_min. A hard clamp y → max(y, g_min) projects the steep
+  // superior edge's nodes onto one point (inverted cells at the first
+  // contact); below g_min + b the height is instead compressed smoothly and
+  // monotonically, y → g_min + b exp((y − g_min − b)/b) (C¹, b = g_min), so
+  // boundary nodes keep their order
+  const double b = _par.g_min;
   auto a = _motion->interface_displacement().x()->mutable_array();
   for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
   {
@@ -116,8 +120,9 @@ void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
     const double w = _profile.weight(X);
     auto u = m.displacement(X);
     u = {w * u[0], w * u[1]};
-    if (X[1] + u[1] < _par.g_min)
-      u[1] = _par.g_min - X[1];
+    const double y = X[1] + u[1];
+    if (y < _par.g_min + b)
+      u[1] = _par.g_min + b * std::exp((y - _par.g_min - b) / b) - X[1];
     a[2 * _fold_dofs[i]] = u[0];
     a[2 * _fold_dofs[i] + 1] = u[1];
   }
@@ -189,9 +194,9 @@ fsai::glottis::FlowGlottis::evaluate(double t, const std::array<double, 2>& q,
   std::array<double, 4> glob;
   MPI_Allreduce(loc.data(), glob.data(), 4, MPI_DOUBLE, MPI_SUM, _comm);
   // 4. contact and the fold step
-  const auto c = hertz_contact(_contact, _profile.edge_centres(),
-                               _profile.geometry().medial_radius, m,
-                               _fold.qdot());
+  const auto c
+      = hertz_contact(_contact, _profile.edge_centres(),
+                      _profile.geometry().medial_radius, m, _fold.qdot());
   _fold.step(_par.dt, {glob[0] + c.generalised[0], glob[1] + c.generalised[1]});
   s.drag = glob[2];
   s.lift = glob[3];
@@ -205,9 +210,9 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
 {
   common::ScopedTimer timer("glottis: fe step");
   const double t = _t + _par.dt;
-  const double ramp
-      = _par.ramp > 0 and t < _par.ramp ? 0.5 * (1 - std::cos(M_PI * t / _par.ramp))
-                                        : 1.0;
+  const double ramp = _par.ramp > 0 and t < _par.ramp
+                          ? 0.5 * (1 - std::cos(M_PI * t / _par.ramp))
+                          : 1.0;
   _flow->set_inlet_pressure(ramp * _par.p_sub);
   _flow->save_state();
   // The coupling variable (h, ℓφ) lives on rank 0; the map broadcasts it
@@ -223,21 +228,20 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
     }
   }
   Sample s;
-  auto rep = _loop->step(
-      t, x,
-      [&](std::span<const double> xi, std::span<double> Hx)
-      {
-        std::array<double, 2> q{0, 0};
-        if (rank == 0)
-          q = {xi[0], xi[1] / lever};
-        MPI_Bcast(q.data(), 2, MPI_DOUBLE, 0, _comm);
-        const auto qn = evaluate(t, q, s);
-        if (rank == 0)
-        {
-          Hx[0] = qn[0];
-          Hx[1] = lever * qn[1];
-        }
-      });
+  auto rep = _loop->step(t, x,
+                         [&](std::span<const double> xi, std::span<double> Hx)
+                         {
+                           std::array<double, 2> q{0, 0};
+                           if (rank == 0)
+                             q = {xi[0], xi[1] / lever};
+                           MPI_Bcast(q.data(), 2, MPI_DOUBLE, 0, _comm);
+                           const auto qn = evaluate(t, q, s);
+                           if (rank == 0)
+                           {
+                             Hx[0] = qn[0];
+                             Hx[1] = lever * qn[1];
+                           }
+                         });
   _fold.accept();
   _motion->advance();
   _q_nn = _q_n;

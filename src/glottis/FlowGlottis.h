@@ -8,8 +8,9 @@
 // fold (TwoDofFold) moves the fold boundary; Hertz impact (HertzContact).
 //
 // Closure model: the fluid boundary follows the fold but never comes closer
-// to the axis than g_min (nodes below g_min are held at y = g_min), so the
-// fluid mesh never collapses; the cells the fold would occupy (inside the
+// to the axis than g_min (below 2 g_min its height is compressed smoothly
+// towards g_min, keeping the boundary nodes in order), so the fluid mesh
+// never collapses; the cells the fold would occupy (inside the
 // moved rigid profile) form the porous region Ω^P_t, marked cell-wise
 // (χ = 1) each coupling iteration, where the term σ_P χ (v − w) stops the
 // flow. Too small σ_P leaks, too large σ_P or g_min → 0 ruins the
@@ -43,7 +44,7 @@ namespace fsai::glottis
 /// [fe] and [closure] sections
 struct FlowGlottisParameters
 {
-  double p_sub = 1000;    ///< subglottal pressure [Pa]
+  double p_sub = 800;     ///< subglottal pressure [Pa]
   double ramp = 5e-3;     ///< p_sub ramps up smoothly over this time [s]
   double dt = 2e-5;       ///< time step [s]
   double h_far = 0.5e-3;  ///< mesh size away from the fold [m]
@@ -90,7 +91,7 @@ private:
   std::shared_ptr<dolfinx::fem::Function<double>> _F; // nodal forces
   std::vector<std::int32_t> _fold_dofs; // velocity-space blocks on the fold
   std::vector<std::array<double, 2>> _fold_X; // their reference coordinates
-  std::vector<std::int32_t> _candidates; // cells that may turn porous
+  std::vector<std::int32_t> _candidates;      // cells that may turn porous
   std::array<double, 2> _q_n{}, _q_nn{};
   int _steps = 0;
   double _t = 0;

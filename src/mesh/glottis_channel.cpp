@@ -6,9 +6,8 @@
 #include <gmsh.h>
 
 fsai::mesh::MeshData
-fsai::mesh::glottis_channel(MPI_Comm comm,
-                            const glottis::FoldProfile& profile, double h_far,
-                            double h_gap)
+fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
+                            double h_far, double h_gap)
 {
   const auto& g = profile.geometry();
   fsai::require(h_gap > 0 and h_gap <= g.rest_gap, "--fe.h_gap",
@@ -42,8 +41,8 @@ fsai::mesh::glottis_channel(MPI_Comm comm,
         const int fold = geo::addSpline(spline);
         const int wall_inf = geo::addLine(p_inf, p_in1);
         const int inlet = geo::addLine(p_in1, p_in0);
-        const int loop
-            = geo::addCurveLoop({axis, outlet, wall_sup, fold, wall_inf, inlet});
+        const int loop = geo::addCurveLoop(
+            {axis, outlet, wall_sup, fold, wall_inf, inlet});
         const int surface = geo::addPlaneSurface({loop});
         geo::synchronize();
         int id = 1;
