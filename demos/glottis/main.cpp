@@ -114,6 +114,12 @@ int main(int argc, char* argv[])
         fp.solver = "direct";
         fsai::coupling::CouplingParameters cpl;
         cpl.atol = 1e-11; // [m] on (h, 1 mm·φ)
+        // The porous region switches cell-wise between coupling iterations,
+        // so near closure the interface map is discontinuous and a step can
+        // stall (relative residual 5.7e-4 after 50 iterations at t = 38.6 ms
+        // in one 2-rank run): such steps are logged, counted in the summary
+        // and the run goes on
+        cpl.on_failure = "warn";
         fsai::common::Parameters params(rt.program(),
                                         "Self-oscillating vocal folds that "
                                         "close the glottis");
@@ -232,6 +238,7 @@ int main(int argc, char* argv[])
         double max_pen = 0;
         long its = 0;
         int its_max = 0;
+        int unconverged = 0;
         double loop_wall = 0;
         {
           fsai::common::ScopedTimer timer("glottis: time loop");
@@ -250,6 +257,7 @@ int main(int argc, char* argv[])
             max_pen = std::max(max_pen, s.penetration);
             its += s.iterations;
             its_max = std::max(its_max, s.iterations);
+            unconverged += !s.converged;
             progress.update(double(k),
                             fmt::format("t = {:.5f} g = {:+.3e} Q = {:.3e} "
                                         "its = {}",
@@ -285,6 +293,7 @@ int main(int argc, char* argv[])
         summary.set("gap_amplitude_m", cs.gap_amplitude);
         summary.set("coupling_iterations_mean", double(its) / double(n));
         summary.set("coupling_iterations_max", its_max);
+        summary.set("coupling_unconverged_steps", unconverged);
         // wall time of the time loop per simulated second (the real-time
         // factor: < 1 is faster than real time)
         summary.set("wall_per_sim_s", wall / sp.duration);
