@@ -11,9 +11,8 @@ fsai::glottis::BernoulliGlottis::BernoulliGlottis(
     const ContactParameters& contact, const BernoulliGlottisParameters& p)
     : _profile(profile), _contact(contact), _par(p), _fold(profile, vf)
 {
-  std::array<double, 2> Q;
-  evaluate(_fold.motion(), _fold.qdot(), Q);
-  _fold.initialise(Q);
+  evaluate(_fold.motion(), _fold.qdot(), _Q);
+  _fold.initialise(_Q);
 }
 
 fsai::glottis::Sample
@@ -37,16 +36,15 @@ fsai::glottis::BernoulliGlottis::evaluate(const RigidMotion& m,
   s.moment = flow.generalised[1];
   s.contact_force = c.force;
   s.penetration = c.penetration;
-  s.closed = flow.min_gap <= 0;
   return s;
 }
 
 fsai::glottis::Sample fsai::glottis::BernoulliGlottis::step()
 {
   const double dt = _par.dt;
-  std::array<double, 2> Q;
-  // Predictor: the load of the current state
-  evaluate(_fold.motion(), _fold.qdot(), Q);
+  // Predictor: the load of the accepted state (evaluated when it was
+  // accepted)
+  std::array<double, 2> Q = _Q;
   Sample s;
   int it = 0;
   for (;; ++it)
@@ -67,9 +65,9 @@ fsai::glottis::Sample fsai::glottis::BernoulliGlottis::step()
           _t + dt, it + 1, dq));
     }
   }
-  _fold.step(dt, Q);
-  s = evaluate(_fold.motion(), _fold.qdot(), Q);
+  // The last iterate is the new state; Q, its load, predicts the next step
   _fold.accept();
+  _Q = Q;
   _t += dt;
   s.t = _t;
   s.iterations = it + 1;

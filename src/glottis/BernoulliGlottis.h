@@ -60,6 +60,7 @@ private:
   ContactParameters _contact;
   BernoulliGlottisParameters _par;
   TwoDofFold _fold;
+  std::array<double, 2> _Q{}; // load of the accepted state
   double _t = 0;
 };
 } // namespace fsai::glottis

@@ -11,7 +11,21 @@
 namespace
 {
 constexpr double lever = 1e-3; // ℓ: coupling variable (h, ℓφ) [m]
+
+// Midpoint of triangle c in the mesh's current coordinates
+std::array<double, 2> cell_midpoint(const dolfinx::mesh::Mesh& mesh,
+                                    std::int32_t c)
+{
+  const auto x = mesh.geometry().x();
+  std::array<double, 2> mid{0, 0};
+  for (auto n : mesh.geometry().dofmap().links(c))
+  {
+    mid[0] += x[3 * n] / 3;
+    mid[1] += x[3 * n + 1] / 3;
+  }
+  return mid;
 }
+} // namespace
 
 void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
 {
@@ -79,18 +93,11 @@ fsai::glottis::FlowGlottis::FlowGlottis(
   // Cells that can become porous: reference midpoint within the fold's
   // x-extent, below the attachment band
   const auto& mesh = *_mesh.mesh;
-  const auto x = mesh.geometry().x();
   const std::int32_t ncells = mesh.topology().index_map(2)->size_local()
                               + mesh.topology().index_map(2)->num_ghosts();
   for (std::int32_t c = 0; c < ncells; ++c)
   {
-    auto nodes = mesh.geometry().dofmap().links(c);
-    double cx = 0, cy = 0;
-    for (auto n : nodes)
-    {
-      cx += x[3 * n] / 3;
-      cy += x[3 * n + 1] / 3;
-    }
+    const auto [cx, cy] = cell_midpoint(mesh, c);
     if (cx > 0 and cx < g.fold_length and cy < g.half_height - g.taper)
       _candidates.push_back(c);
   }
@@ -131,20 +138,12 @@ void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
 void fsai::glottis::FlowGlottis::mark_porous(const RigidMotion& m)
 {
   // χ = 1 in the cells whose (current) midpoint lies inside the moved fold
-  const auto& mesh = *_mesh.mesh;
-  const auto x = mesh.geometry().x();
   auto& chi = _flow->porous_indicator();
   auto c_arr = chi.x()->mutable_array();
   const auto dofmap = chi.function_space()->dofmap();
   for (auto c : _candidates)
   {
-    auto nodes = mesh.geometry().dofmap().links(c);
-    std::array<double, 2> mid{0, 0};
-    for (auto n : nodes)
-    {
-      mid[0] += x[3 * n] / 3;
-      mid[1] += x[3 * n + 1] / 3;
-    }
+    const auto mid = cell_midpoint(*_mesh.mesh, c);
     c_arr[dofmap->cell_dofs(c)[0]]
         = _profile.contains(m.reference_of(mid)) ? 1.0 : 0.0;
   }
@@ -264,6 +263,5 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
   s.gap = 1e300;
   for (auto& p : surf)
     s.gap = std::min(s.gap, p[1]);
-  s.closed = s.gap <= _par.g_min;
   return s;
 }

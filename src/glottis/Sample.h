@@ -16,8 +16,7 @@ struct Sample
   double moment = 0;        ///< generalised fluid force Q_φ [N m]
   double contact_force = 0; ///< Hertz F_H [N]
   double penetration = 0;   ///< δ [m]
-  int closed = 0; ///< 1 if g ≤ the closure threshold (FE: g_min; reduced: 0)
-  int iterations = 0;    ///< coupling iterations of the step
-  bool converged = true; ///< coupling reached its tolerance
+  int iterations = 0;       ///< coupling iterations of the step
+  bool converged = true;    ///< coupling reached its tolerance
 };
 } // namespace fsai::glottis
