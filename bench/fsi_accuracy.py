@@ -20,6 +20,8 @@ import json
 import os
 import subprocess
 
+from turek_hron_stats import REF, load_series, periodic_stats
+
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
 ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
@@ -28,13 +30,6 @@ ap.add_argument("--only", default="")
 args = ap.parse_args()
 out = os.path.join(here, "results")
 
-# (mean, amplitude, frequency) per quantity
-REF = {
-    "FSI2": {"uy_A_m": (0.0013, 0.0816, 1.93), "ux_A_m": (-0.01485, 0.0127, 3.86),
-             "drag_N_per_m": (215.06, 77.65, 3.86), "lift_N_per_m": (0.61, 237.8, 1.93)},
-    "FSI3": {"uy_A_m": (0.00147, 0.03499, 5.46), "ux_A_m": (-0.00288, 0.00272, 10.93),
-             "drag_N_per_m": (460.5, 27.74, 10.93), "lift_N_per_m": (2.50, 153.91, 5.46)},
-}
 REF_FSI3_2006 = {"uy_A_m": (0.00148, 0.03438, 5.3), "drag_N_per_m": (457.3, 22.66, 10.9)}
 
 # case, h, h_i, dt, t_end, window, extra flags
@@ -45,18 +40,6 @@ CONFIGS = [
     ("FSI3", 0.04, 0.004, 0.0025, 6.0, 1.0, []),
     ("FSI3", 0.03, 0.003, 0.005, 6.0, 1.0, []),
 ]
-
-
-def stats(series, key, window):
-    t_end = series[-1]["t_s"]
-    rows = [r for r in series if r["t_s"] >= t_end - window]
-    v = [r[key] for r in rows]
-    t = [r["t_s"] for r in rows]
-    mean, amp = (max(v) + min(v)) / 2, (max(v) - min(v)) / 2
-    cross = [t[i - 1] + (t[i] - t[i - 1]) * (mean - v[i - 1]) / (v[i] - v[i - 1])
-             for i in range(1, len(v)) if v[i - 1] < mean <= v[i]]
-    freq = (len(cross) - 1) / (cross[-1] - cross[0]) if len(cross) >= 2 else float("nan")
-    return mean, amp, freq
 
 
 rows = []
@@ -75,15 +58,14 @@ for case, h, hi, dt, t_end, window, extra in CONFIGS:
         subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(run, "summary.json")) as f:
         summ = json.load(f)
-    with open(os.path.join(run, "series.csv")) as f:
-        series = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    series = load_series(run)
     row = {"case": case, "h": h, "h_i": hi, "dt": dt,
            "ranks": summ.get("mpi_size", ""),
            "solver": summ["parameters"]["fluid"]["solver"],
            "wall_per_sim_s": summ["wall_per_sim_s"],
            "its_mean": summ["coupling_iterations_mean"]}
     for key, (rm, ra, rf) in REF[case].items():
-        m, a, fr = stats(series, key, window)
+        m, a, fr = periodic_stats(series, key, window)
         short = key.split("_")[0] + ("" if key.startswith("drag") or key.startswith("lift")
                                      else "_" + key.split("_")[1])
         row[f"{short}_mean"] = m
@@ -92,7 +74,7 @@ for case, h, hi, dt, t_end, window, extra in CONFIGS:
         if key == "drag_N_per_m":
             row["drag_mean_err_pct"] = 100 * (m / rm - 1)
     if case == "FSI3":
-        m, a, fr = stats(series, "uy_A_m", window)
+        m, a, fr = periodic_stats(series, "uy_A_m", window)
         row["uy_amp_err_2006_pct"] = 100 * (a / REF_FSI3_2006["uy_A_m"][1] - 1)
         row["uy_freq_err_2006_pct"] = 100 * (fr / REF_FSI3_2006["uy_A_m"][2] - 1)
     rows.append(row)
