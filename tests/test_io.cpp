@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "catch.h"
 #include <cmath>
+#include <common/periodic.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/generation.h>
 #include <fsai_forms/poisson.h>
@@ -99,4 +100,27 @@ TEST_CASE("TimeSeriesWriter writes the mesh once and one entry per step",
   CHECK(count("<Time Value=") == 3);
   CHECK(count("<Attribute Name=\"pressure\"") == 3);
   CHECK(count("<Geometry") == 1); // Mesh written once
+}
+
+TEST_CASE("periodic_stats: mean, amplitude, frequency of a sampled sine",
+          "[io]")
+{
+  // v = 0.3 + 2 sin(2π 1.7 t) + a decaying start-up, sampled at 200 Hz on
+  // [0, 10] s; statistics over t ≥ 6 s where the transient is < 1e-9
+  std::vector<double> t, v;
+  for (int k = 0; k <= 2000; ++k)
+  {
+    t.push_back(0.005 * k);
+    v.push_back(0.3 + 2 * std::sin(2 * M_PI * 1.7 * t.back())
+                + 5 * std::exp(-4 * t.back()));
+  }
+  auto s = fsai::common::periodic_stats(t, v, 6.0);
+  CHECK(s.mean == Approx(0.3).margin(2e-3));
+  CHECK(s.amplitude == Approx(2.0).epsilon(2e-3));
+  CHECK(s.frequency == Approx(1.7).epsilon(1e-3));
+  CHECK(s.crossings >= 6);
+  // Too short a window: no frequency, no exception
+  auto s1 = fsai::common::periodic_stats(t, v, 9.9);
+  CHECK(s1.frequency == 0.0);
+  CHECK_THROWS(fsai::common::periodic_stats(t, {1.0}, 0.0));
 }
