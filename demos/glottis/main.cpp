@@ -30,10 +30,12 @@
 #include <io/Progress.h>
 #include <io/RunSummary.h>
 #include <io/TimeSeriesWriter.h>
+#include <io/checkpoint.h>
 #include <io/output_dir.h>
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 
 namespace
@@ -51,6 +53,9 @@ struct SceneParameters
   double stats_from = 0.5; // statistics over t ≥ stats_from · duration
   int write_every = 50;    // fe: XDMF every N steps (0: none)
   std::vector<double> onset_sweep; // p_sub values for the stability sweep
+  int checkpoint_every = 0;        // steps between checkpoints (0: none)
+  std::string restart;             // run folder to continue
+  int kill_at_step = 0;            // testing: SIGKILL after this step
 
   void bind(fsai::common::Parameters& p)
   {
@@ -72,6 +77,13 @@ struct SceneParameters
     p.add("onset_sweep", onset_sweep,
           "bernoulli: linear stability of the static equilibrium at these "
           "p_sub [Pa] (printed, onset.csv) instead of a time run");
+    p.add("checkpoint-every", checkpoint_every,
+          "bernoulli: write DIR/checkpoint.json every N steps (0: never)");
+    p.add("restart", restart,
+          "bernoulli: continue the run in this folder from its checkpoint "
+          "(same parameters; --duration may be longer)");
+    p.add("debug.kill_at_step", kill_at_step,
+          "testing: kill this process with SIGKILL after step N");
   }
   void validate() const
   {
@@ -83,6 +95,14 @@ struct SceneParameters
     fsai::require(separation_ratio >= 1, "--bernoulli.separation_ratio", ">= 1",
                   separation_ratio);
     fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
+    fsai::require(checkpoint_every >= 0, "--checkpoint-every", ">= 0",
+                  checkpoint_every);
+    if (flow == "fe" and (checkpoint_every > 0 or !restart.empty()))
+    {
+      throw fsai::InputError("--checkpoint-every/--restart: only with --flow "
+                             "bernoulli (the FE flow state is not "
+                             "checkpointed yet)");
+    }
   }
 };
 } // namespace
@@ -133,6 +153,8 @@ int main(int argc, char* argv[])
         cpl.bind(params);
         params.parse(rt.app_args());
         sp.validate();
+        if (!sp.restart.empty())
+          sp.output = sp.restart; // continue in the run's own folder
         geo.validate();
         vf.validate();
         cp.validate();
@@ -224,13 +246,13 @@ int main(int argc, char* argv[])
             std::vector<double>{md.frequency_hz[0], md.frequency_hz[1]});
 
         // 2. Time loop
-        fsai::io::CsvWriter csv(rt.comm(), sp.output + "/series.csv",
-                                {"t_s", "gap_m", "Q_m3s", "h_m", "phi_rad",
-                                 "lift_N", "drag_N", "moment_Nm",
-                                 "contact_force_N", "penetration_m", "closed",
-                                 "iterations"});
+        const std::vector<std::string> columns
+            = {"t_s",           "gap_m",     "Q_m3s",
+               "h_m",           "phi_rad",   "lift_N",
+               "drag_N",        "moment_Nm", "contact_force_N",
+               "penetration_m", "closed",    "iterations",
+               "Q_inlet_m3s"};
         const long n = std::lround(sp.duration / sp.dt);
-        fsai::io::Progress progress("step", double(n), 5.0);
         std::vector<double> t, g, Q;
         t.reserve(n);
         g.reserve(n);
@@ -240,17 +262,60 @@ int main(int argc, char* argv[])
         int its_max = 0;
         int unconverged = 0;
         double loop_wall = 0;
+        // A restart continues from the checkpoint's step: the state it
+        // holds, the series up to that step (later rows are dropped) and
+        // the statistics rebuilt from those rows
+        const std::string ckpt_path = sp.output + "/checkpoint.json";
+        long k0 = 0;
+        std::unique_ptr<fsai::io::CsvWriter> csv;
+        if (!sp.restart.empty())
+        {
+          const auto ck = fsai::io::read_checkpoint(rt.comm(), ckpt_path);
+          const std::string changed = fsai::io::first_changed_parameter(
+              ck.at("parameters"), params.to_json());
+          if (!changed.empty())
+          {
+            throw fsai::InputError("restart: parameter " + changed
+                                   + " differs from the checkpointed run");
+          }
+          k0 = ck.at("step").get<long>();
+          const auto& st = ck.at("state");
+          reduced->set_state(
+              {st.at("t").get<double>(),
+               st.at("fold").get<std::array<std::array<double, 2>, 3>>(),
+               st.at("load").get<std::array<double, 2>>()});
+          csv = std::make_unique<fsai::io::CsvWriter>(
+              rt.comm(), sp.output + "/series.csv", columns, std::size_t(k0));
+          for (const auto& r : csv->kept_rows())
+          {
+            t.push_back(r[0]);
+            g.push_back(r[1]);
+            Q.push_back(r[2]);
+            max_pen = std::max(max_pen, r[9]);
+            its += long(r[11]);
+            its_max = std::max(its_max, int(r[11]));
+          }
+          fsai::log::info("restart from step {} (t = {:.6g} s) of {}", k0,
+                          reduced->time(), ckpt_path);
+          summary.set("restarted_from_step", k0);
+        }
+        else
+        {
+          csv = std::make_unique<fsai::io::CsvWriter>(
+              rt.comm(), sp.output + "/series.csv", columns);
+        }
+        fsai::io::Progress progress("step", double(n), 5.0);
         {
           fsai::common::ScopedTimer timer("glottis: time loop");
           const auto loop0 = std::chrono::steady_clock::now();
-          for (long k = 1; k <= n; ++k)
+          for (long k = k0 + 1; k <= n; ++k)
           {
             const auto s = reduced ? reduced->step() : fem->step();
             if (xdmf and k % sp.write_every == 0)
               xdmf->write(s.t);
-            csv.row({s.t, s.gap, s.Q, s.h, s.phi, s.lift, s.drag, s.moment,
-                     s.contact_force, s.penetration, double(s.gap <= fe.g_min),
-                     double(s.iterations)});
+            csv->row({s.t, s.gap, s.Q, s.h, s.phi, s.lift, s.drag, s.moment,
+                      s.contact_force, s.penetration, double(s.gap <= fe.g_min),
+                      double(s.iterations), s.Q_inlet});
             t.push_back(s.t);
             g.push_back(s.gap);
             Q.push_back(s.Q);
@@ -258,6 +323,18 @@ int main(int argc, char* argv[])
             its += s.iterations;
             its_max = std::max(its_max, s.iterations);
             unconverged += !s.converged;
+            if (sp.checkpoint_every > 0 and k % sp.checkpoint_every == 0)
+            {
+              const auto st = reduced->state();
+              nlohmann::json ck{
+                  {"step", k},
+                  {"parameters", params.to_json()},
+                  {"state",
+                   {{"t", st.t}, {"fold", st.fold}, {"load", st.load}}}};
+              fsai::io::write_checkpoint(rt.comm(), ckpt_path, ck);
+            }
+            if (sp.kill_at_step == k)
+              std::raise(SIGKILL);
             progress.update(double(k),
                             fmt::format("t = {:.5f} g = {:+.3e} Q = {:.3e} "
                                         "its = {}",

@@ -24,7 +24,8 @@ fsai::common::periodic_stats(const std::vector<double>& t,
     if (v[i - 1] < s.mean and v[i] >= s.mean)
     {
       const double tc
-          = t[i - 1] + (t[i] - t[i - 1]) * (s.mean - v[i - 1]) / (v[i] - v[i - 1]);
+          = t[i - 1]
+            + (t[i] - t[i - 1]) * (s.mean - v[i - 1]) / (v[i] - v[i - 1]);
       if (s.crossings++ == 0)
         first = tc;
       last = tc;

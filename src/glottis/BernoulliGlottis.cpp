@@ -29,6 +29,7 @@ fsai::glottis::BernoulliGlottis::evaluate(const RigidMotion& m,
   Sample s;
   s.gap = flow.min_gap;
   s.Q = flow.Q;
+  s.Q_inlet = flow.Q; // quasi-steady: no displaced volume
   s.h = m.h;
   s.phi = m.phi;
   s.drag = flow.force[0];

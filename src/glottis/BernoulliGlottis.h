@@ -53,6 +53,22 @@ public:
   const TwoDofFold& fold() const { return _fold; }
   double time() const { return _t; }
 
+  /// Everything the next step depends on: time, the fold's accepted state
+  /// and the load that predicts the next step
+  struct State
+  {
+    double t;
+    std::array<std::array<double, 2>, 3> fold; // (q, q̇, q̈)
+    std::array<double, 2> load;
+  };
+  State state() const { return {_t, _fold.state(), _Q}; }
+  void set_state(const State& s)
+  {
+    _t = s.t;
+    _fold.set_state(s.fold);
+    _Q = s.load;
+  }
+
 private:
   Sample evaluate(const RigidMotion& m, const std::array<double, 2>& qdot,
                   std::array<double, 2>& Q) const;

@@ -6,6 +6,7 @@
 #include <common/errors.h>
 #include <common/timer.h>
 #include <dolfinx/fem/utils.h>
+#include <dolfinx/mesh/utils.h>
 #include <mesh/glottis_channel.h>
 
 namespace
@@ -100,6 +101,14 @@ fsai::glottis::FlowGlottis::FlowGlottis(
     const auto [cx, cy] = cell_midpoint(mesh, c);
     if (cx > 0 and cx < g.fold_length and cy < g.half_height - g.taper)
       _candidates.push_back(c);
+  }
+  // Upstream fold facets: midpoint (reference configuration) x < medial_x
+  {
+    auto xg = dolfinx::mesh::entities_to_geometry(mesh, 1, _fold_facets, false);
+    const auto x = mesh.geometry().x();
+    for (std::size_t i = 0; i < _fold_facets.size(); ++i)
+      if (0.5 * (x[3 * xg[2 * i]] + x[3 * xg[2 * i + 1]]) < g.medial_x)
+        _upstream_fold_facets.push_back(_fold_facets[i]);
   }
   _q_n = _q_nn = _fold.q();
   std::array<double, 2> Q{0, 0};
@@ -252,13 +261,18 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
   s.phi = _fold.q()[1];
   s.iterations = rep.iterations;
   s.converged = rep.converged;
-  // Glottal flow: the inlet flux, both folds over the depth L_g. It also
-  // carries the air the moving inferior surface displaces (spikes at the
-  // closing instants). Subtracting the rigid surface's volume rate instead
-  // gave 36 % "leakage" in the closed phase: near the axis the fluid
-  // boundary is held at g_min and does not move with the rigid surface, so
-  // that correction needs the mesh boundary's own velocity (not done yet)
-  s.Q = -2 * _profile.geometry().depth * _flow->flow_rate(_inlet_facets);
+  // Glottal flow through the section x = medial_x (both folds, depth L_g).
+  // The inlet flux also carries the air that the moving inferior surface
+  // displaces (spikes at the closing instants, a false "leakage"). With
+  // div v = 0, the flux through the section is the inlet flux minus the
+  // flux through the upstream fold wall, where v equals the mesh velocity of
+  // the actual fluid boundary (held at g_min near the axis, which a rigid-
+  // surface correction gets wrong). The section moves with the mesh there;
+  // the axis is a slip line, so this differs from a fixed section only by
+  // the mesh's horizontal motion near the axis.
+  const double depth2 = 2 * _profile.geometry().depth;
+  s.Q_inlet = -depth2 * _flow->flow_rate(_inlet_facets);
+  s.Q = s.Q_inlet - depth2 * _flow->flow_rate(_upstream_fold_facets);
   const auto surf = moved_surface(_profile, _fold.motion());
   s.gap = 1e300;
   for (auto& p : surf)

@@ -85,6 +85,10 @@ private:
   TwoDofFold _fold;
   mesh::MeshData _mesh;
   std::vector<std::int32_t> _fold_facets, _inlet_facets;
+  /// Fold facets upstream of the glottal section x = medial_x (reference
+  /// midpoint): the flow through that section is the inlet flux minus the
+  /// volume these moving walls displace
+  std::vector<std::int32_t> _upstream_fold_facets;
   std::unique_ptr<fluid::FluidSolver> _flow;
   std::unique_ptr<ale::MeshMotion> _motion;
   std::unique_ptr<coupling::FixedPointCoupling> _loop;

@@ -7,13 +7,16 @@ namespace fsai::glottis
 struct Sample
 {
   double t = 0;
-  double gap = 0;  ///< half-gap g: lowest point of the fold [m] (< 0: overlap)
-  double Q = 0;    ///< glottal flow, both folds, depth L_g [m³/s]
-  double h = 0;    ///< translation [m]
-  double phi = 0;  ///< rotation [rad]
-  double lift = 0; ///< fluid force on the fold along +y [N]
-  double drag = 0; ///< fluid force along +x [N]
-  double moment = 0;        ///< generalised fluid force Q_φ [N m]
+  double gap = 0; ///< half-gap g: lowest point of the fold [m] (< 0: overlap)
+  double Q = 0;   ///< glottal flow through the section at the medial surface's
+                  ///< centre, both folds, depth L_g [m³/s]
+  double Q_inlet = 0; ///< flow at the inlet (FE model; includes the air the
+                      ///< moving inferior surface displaces) [m³/s]
+  double h = 0;       ///< translation [m]
+  double phi = 0;     ///< rotation [rad]
+  double lift = 0;    ///< fluid force on the fold along +y [N]
+  double drag = 0;    ///< fluid force along +x [N]
+  double moment = 0;  ///< generalised fluid force Q_φ [N m]
   double contact_force = 0; ///< Hertz F_H [N]
   double penetration = 0;   ///< δ [m]
   int iterations = 0;       ///< coupling iterations of the step

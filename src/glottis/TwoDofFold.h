@@ -96,6 +96,15 @@ public:
   void accept();
   /// The state the next step() starts from
   const Vec2& q_start() const { return _q0; }
+  /// The accepted state (q, q̇, q̈) (checkpoints)
+  std::array<Vec2, 3> state() const { return {_q0, _v0, _a0}; }
+  /// Set the accepted and current state (restart from a checkpoint)
+  void set_state(const std::array<Vec2, 3>& s)
+  {
+    _q0 = _q = s[0];
+    _v0 = _v = s[1];
+    _a0 = _a = s[2];
+  }
   /// Total mechanical energy ½ q̇ᵀMq̇ + ½ qᵀKq
   double energy() const;
 
