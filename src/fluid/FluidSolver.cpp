@@ -18,6 +18,16 @@
 using namespace dolfinx;
 namespace fluid_forms = fsai::forms::fluid;
 
+namespace
+{
+// Entries of a function's vector owned by this rank (ghosts excluded, so
+// norms summed over ranks count each dof once, as in a serial run)
+std::size_t owned_entries(const dolfinx::fem::Function<double>& f)
+{
+  const auto& map = *f.x()->map();
+  return std::size_t(map.size_local()) * f.x()->bs();
+}
+} // namespace
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
 {
@@ -356,7 +366,7 @@ int fsai::fluid::FluidSolver::step()
     // Picard: convect with the new iterate
     auto v = _v->x()->array();
     double d2 = 0, v2 = 0;
-    for (std::size_t i = 0; i < v.size(); ++i)
+    for (std::size_t i = 0; i < owned_entries(*_v); ++i)
       d2 += (v[i] - prev[i]) * (v[i] - prev[i]), v2 += v[i] * v[i];
     std::array<double, 2> loc{d2, v2}, glob;
     MPI_Allreduce(loc.data(), glob.data(), 2, MPI_DOUBLE, MPI_SUM,
@@ -386,7 +396,7 @@ int fsai::fluid::FluidSolver::solve_steady(int max_iterations)
     solve();
     auto v = _v->x()->array(), vs = _v_star->x()->array();
     double d2 = 0, v2 = 0;
-    for (std::size_t i = 0; i < v.size(); ++i)
+    for (std::size_t i = 0; i < owned_entries(*_v); ++i)
       d2 += (v[i] - vs[i]) * (v[i] - vs[i]), v2 += v[i] * v[i];
     std::array<double, 2> loc{d2, v2}, glob;
     MPI_Allreduce(loc.data(), glob.data(), 2, MPI_DOUBLE, MPI_SUM,

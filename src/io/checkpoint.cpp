@@ -82,8 +82,8 @@ std::string fsai::io::first_changed_parameter(nlohmann::json saved,
                                               nlohmann::json current)
 {
   for (auto* j : {&saved, &current})
-    for (const char* key : {"output", "restart", "checkpoint-every",
-                            "duration", "debug"})
+    for (const char* key :
+         {"output", "restart", "checkpoint-every", "duration", "debug"})
       j->erase(key);
   const auto diff = nlohmann::json::diff(saved, current);
   if (diff.empty())

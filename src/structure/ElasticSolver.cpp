@@ -46,6 +46,10 @@ void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
   p.add("solid.rayleigh_stiffness", rayleigh_stiffness, "Rayleigh eps2 [s]");
   p.add("solid.newton_rtol", newton_rtol, "Newton tolerance on |du|/|u|");
   p.add("solid.newton_max_it", newton_max_it, "Newton iteration limit");
+  p.add("solid.newton_reuse", newton_reuse,
+        "modified Newton: reuse the factorised Jacobian while it converges");
+  p.add("solid.newton_reuse_rate", newton_reuse_rate,
+        "modified Newton: refactorise when |du| shrinks by less than this");
 }
 //-----------------------------------------------------------------------------
 void fsai::structure::SolidParameters::validate() const
@@ -65,6 +69,8 @@ void fsai::structure::SolidParameters::validate() const
   fsai::require_positive("--solid.newton_rtol", newton_rtol);
   fsai::require(newton_max_it >= 1, "--solid.newton_max_it", ">= 1",
                 newton_max_it);
+  fsai::require(newton_reuse_rate > 0 and newton_reuse_rate < 1,
+                "--solid.newton_reuse_rate", "in (0, 1)", newton_reuse_rate);
 }
 //-----------------------------------------------------------------------------
 fsai::structure::ElasticSolver::ElasticSolver(
@@ -202,6 +208,13 @@ int fsai::structure::ElasticSolver::newton(const std::string& what)
   la::petsc::Vector _du(la::petsc::create_vector_wrap(du), false);
   const bool linear = _p.model == "linear";
   double r0 = -1.0;
+  double dnorm_prev = -1.0;
+  // Modified Newton in dynamic steps only: there the mass term dominates
+  // the tangent and a step moves little; a static solve from rest is too
+  // nonlinear for an old tangent (CSM1's first load step diverges with it)
+  const bool reuse = _p.newton_reuse and _dynamic->value[0] > 0;
+  if (!reuse)
+    _J_stale = true;
   for (int it = 1; it <= _p.newton_max_it; ++it)
   {
     // Residual, zero on the Dirichlet rows (u stays 0 there)
@@ -223,8 +236,9 @@ int fsai::structure::ElasticSolver::newton(const std::string& what)
     if (rnorm <= _p.newton_atol)
       return it - 1;
 
-    // Jacobian: constant for the linear model while Δt is fixed
-    if (!linear or !_J_current)
+    // Jacobian: constant for the linear model while Δt is fixed; with
+    // newton_reuse the last factorised one while it still contracts
+    if (!_J_current or (!linear and (!reuse or _J_stale)))
     {
       common::ScopedTimer t("solid: assemble jacobian");
       MatZeroEntries(_Jmat.mat());
@@ -238,6 +252,8 @@ int fsai::structure::ElasticSolver::newton(const std::string& what)
       MatAssemblyEnd(_Jmat.mat(), MAT_FINAL_ASSEMBLY);
       _solver.set_operator(_Jmat.mat());
       _J_current = true;
+      _J_stale = false;
+      dnorm_prev = -1.0; // a fresh tangent: no contraction test yet
     }
     {
       common::ScopedTimer t("solid: solve");
@@ -261,6 +277,10 @@ int fsai::structure::ElasticSolver::newton(const std::string& what)
     if (linear)
       return it; // exact in one iteration (J is the exact tangent)
     const double dnorm = global_norm(du), unorm = global_norm(*_u->x());
+    // An old tangent that no longer contracts fast is refreshed
+    if (dnorm_prev > 0 and dnorm > _p.newton_reuse_rate * dnorm_prev)
+      _J_stale = true;
+    dnorm_prev = dnorm;
     if (dnorm <= _p.newton_rtol * std::max(unorm, 1e-300))
       return it;
   }

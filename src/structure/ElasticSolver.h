@@ -51,6 +51,12 @@ struct SolidParameters
   double newton_rtol = 1e-9;       ///< on the update, relative to u
   double newton_atol = 1e-12;      ///< on the residual norm
   int newton_max_it = 30;
+  /// Modified Newton (dynamic steps): keep the factorised Jacobian across
+  /// Newton iterations, coupling iterations and steps while each update shrinks
+  /// by at least `newton_reuse_rate` (else refactorise); the converged
+  /// state is the same to the Newton tolerance
+  bool newton_reuse = false;
+  double newton_reuse_rate = 0.25;
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
@@ -137,7 +143,10 @@ private:
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _loaded_tags;
   std::shared_ptr<dolfinx::fem::Form<double>> _R, _J, _K, _M;
   dolfinx::la::petsc::Matrix _Jmat;
-  bool _J_current = false; ///< linear model: J depends on Δt only
+  bool _J_current = false; ///< J assembled and factorised for the current
+                           ///< material, Δt and load mode
+  bool _J_stale = true;    ///< modified Newton: refactorise before the next
+                           ///< solve
   std::vector<double> _saved;
   dolfinx::la::petsc::KrylovSolver _solver;
 };
