@@ -40,11 +40,12 @@ CONFIGS = [
     ("FSI3", 0.04, 0.004, 0.005, 7.0, 1.0, []),
     ("FSI3", 0.04, 0.004, 0.0025, 6.0, 1.0, []),
     ("FSI3", 0.03, 0.003, 0.005, 6.0, 1.0, []),
-    # modified Newton in the solid (factorised Jacobian reused while it
-    # contracts): same accuracy, the solid's share of the cost cut
-    ("FSI3", 0.04, 0.004, 0.005, 6.0, 1.0, ["--solid.newton_reuse"]),
-    ("FSI3", 0.04, 0.004, 0.0025, 6.0, 1.0, ["--solid.newton_reuse"]),
 ]
+# (--solid.newton_reuse, the solid's modified Newton, is not used here: on
+# FSI3 at dt = 0.005 the IQN-ILS loop stalled at t = 0.445 s with a relative
+# interface residual of 2.4e-5 after 50 iterations — whether the Jacobian is
+# refreshed depends on the iteration history, so the solid's response is
+# no longer a smooth function of the load at the coupling tolerance)
 
 
 rows = []

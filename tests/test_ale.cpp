@@ -159,7 +159,7 @@ TEST_CASE("ALE: affine boundary motion is extended exactly, without drift, "
     fsai::ale::MeshMotionParameters p;
     p.method = method;
     p.stiffening = "none"; // a cell-wise k does not keep affine fields exact
-    fsai::ale::MeshMotion motion(mesh, V, {all, {}, {}}, p);
+    fsai::ale::MeshMotion motion(mesh, V, {all, {}, {}, {}}, p);
     const std::vector<double> X = V->tabulate_dof_coordinates(false);
     // d(X, t) = G(t) X + c(t): affine, so the extension is exact
     auto d = [](double x, double y, double t) -> std::array<double, 2>

@@ -187,8 +187,8 @@ TEST_CASE("Reduced model: stable below onset, self-sustained closing "
   auto high = linear_stability(prof, vf, bp);
   REQUIRE(high.growth_rate.size() == 2);
   CHECK(high.growth_rate[0] > 0);
-  // Time run at 800 Pa (the scene's default): a limit cycle closing in
-  // every cycle
+  // Time run at 800 Pa (the demo's default is 1200 Pa): a limit cycle closing
+  // in every cycle
   BernoulliGlottis scene(prof, vf, ContactParameters{}, bp);
   std::vector<double> t, gap, Q;
   for (int k = 0; k < 15000; ++k) // 0.3 s

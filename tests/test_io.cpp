@@ -4,12 +4,14 @@
 #include <common/periodic.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/generation.h>
+#include <filesystem>
 #include <fsai_forms/poisson.h>
 #include <fstream>
 #include <io/CsvWriter.h>
 #include <io/Progress.h>
 #include <io/RunSummary.h>
 #include <io/TimeSeriesWriter.h>
+#include <io/checkpoint.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -123,4 +125,26 @@ TEST_CASE("periodic_stats: mean, amplitude, frequency of a sampled sine",
   auto s1 = fsai::common::periodic_stats(t, v, 9.9);
   CHECK(s1.frequency == 0.0);
   CHECK_THROWS(fsai::common::periodic_stats(t, {1.0}, 0.0));
+}
+
+TEST_CASE("CsvWriter and checkpoints report a full disk", "[io]")
+{
+  // /dev/full accepts the open and fails every write with ENOSPC
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  REQUIRE(std::filesystem::exists("/dev/full")); // Linux
+  if (rank == 0)
+  {
+    CHECK_THROWS_WITH(
+        fsai::io::CsvWriter(MPI_COMM_SELF, "/dev/full", {"t_s", "x"}),
+        Catch::Matchers::Contains("disk full"));
+  }
+  // A torn checkpoint must not replace a good one
+  const std::string dir = "test_io_checkpoint_" + std::to_string(rank);
+  std::filesystem::create_directories(dir);
+  fsai::io::write_checkpoint(MPI_COMM_SELF, dir + "/ck.json", {{"step", 1}});
+  CHECK(fsai::io::read_checkpoint(MPI_COMM_SELF, dir + "/ck.json")["step"]
+        == 1);
+  CHECK_THROWS_WITH(fsai::io::read_checkpoint(MPI_COMM_SELF, dir + "/none"),
+                    Catch::Matchers::Contains("no checkpoint"));
 }

@@ -6,6 +6,8 @@
 #include "../common/timer.h"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/fem/utils.h>
@@ -119,7 +121,17 @@ fsai::ale::mesh_quality(const mesh::Mesh& mesh,
     const double det0
         = simplex_jacobian(cell_vertices(mesh, reference_x, c), tdim).first;
     if (det * det0 <= 0)
+    {
       q = -q; // inverted relative to the reference orientation
+      if (std::getenv("FSAI_DEBUG_INVERTED"))
+      {
+        auto v0 = cell_vertices(mesh, reference_x, c);
+        for (int i = 0; i <= tdim; ++i)
+          std::fprintf(stderr,
+                       "inverted cell %d: X (%.6e, %.6e) -> x (%.6e, %.6e)\n",
+                       c, v0[3 * i], v0[3 * i + 1], v[3 * i], v[3 * i + 1]);
+      }
+    }
     if (q < loc.q)
     {
       loc.q = q;
@@ -212,6 +224,14 @@ fsai::ale::MeshMotion::MeshMotion(std::shared_ptr<mesh::Mesh> mesh,
   }
   _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
       _d_interface, fem::locate_dofs_topological(*V, fdim, bnd.interface)));
+  if (!bnd.prescribed.empty())
+  {
+    std::vector<std::int32_t> dofs = bnd.prescribed;
+    std::sort(dofs.begin(), dofs.end());
+    dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+    _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(_d_interface,
+                                                              std::move(dofs)));
+  }
 
   // The operator lives on the reference mesh: assembled and factorised once
   _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(

@@ -62,6 +62,11 @@ struct MeshMotionBoundaries
   /// d_c = 0 for component c only (slip along a straight axis-aligned line
   /// or plane: the symmetry axis y = 0 is {1, facets})
   std::vector<std::pair<int, std::vector<std::int32_t>>> slip;
+  /// Interior (or boundary) dof blocks whose displacement the caller
+  /// prescribes through interface_displacement() as well (an algebraic
+  /// motion of a region, e.g. a closing gap); local indices with ghosts,
+  /// chosen consistently on every rank
+  std::vector<std::int32_t> prescribed;
 };
 
 /// A cell inverted or fell below the accepted quality

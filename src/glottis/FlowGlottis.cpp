@@ -1,10 +1,13 @@
 // Copyright (C) 2026 fsai developers
 #include "FlowGlottis.h"
 #include "BernoulliFlow.h"
+#include <algorithm>
 #include <cmath>
 #include <common/Parameters.h>
 #include <common/errors.h>
 #include <common/timer.h>
+#include <cstdio>
+#include <cstdlib>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/utils.h>
 #include <mesh/glottis_channel.h>
@@ -35,6 +38,8 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
   p.add("fe.h_gap", h_gap, "mesh size on the fold [m]");
   p.add("closure.g_min", g_min,
         "closest approach of the fluid boundary to the axis [m]");
+  p.add_choice("closure.gap_motion", gap_motion, {"algebraic", "elastic"},
+               "mesh motion between the medial surface and the axis");
 }
 
 void fsai::glottis::FlowGlottisParameters::validate() const
@@ -80,17 +85,70 @@ fsai::glottis::FlowGlottis::FlowGlottis(
     auto f = find(name);
     mb.fixed.insert(mb.fixed.end(), f.begin(), f.end());
   }
-  mb.slip = {{1, fb.symmetry}};
-  _motion = std::make_unique<ale::MeshMotion>(_mesh.mesh,
-                                              _flow->velocity_space(), mb, ap);
-  _loop
-      = std::make_unique<coupling::FixedPointCoupling>(comm, cp, coupling_csv);
   const auto V = _flow->velocity_space();
   _F = std::make_shared<dolfinx::fem::Function<double>>(V);
   _fold_dofs = dolfinx::fem::locate_dofs_topological(*V, 1, _fold_facets);
   const std::vector<double> X = V->tabulate_dof_coordinates(false);
   for (auto d : _fold_dofs)
     _fold_X.push_back({X[3 * d], X[3 * d + 1]});
+  mb.slip = {{1, fb.symmetry}};
+  if (p.gap_motion == "algebraic")
+  {
+    // The lower envelope of the fold boundary near the axis as the mesh
+    // has it: every fold node (all ranks) whose reference height is
+    // within rest gap + R of the axis, by x. Each node below that envelope
+    // hangs from the boundary segment above it (column top = linear
+    // interpolation of the two boundary nodes, exactly the discrete
+    // boundary, so no node can pass it); every rank tests its owned and
+    // ghost dofs by the same geometric rule
+    const double y_lim = g.rest_gap + g.medial_radius;
+    std::vector<double> loc;
+    for (auto& X : _fold_X)
+      if (X[1] <= 1.5 * y_lim)
+        loc.insert(loc.end(), {X[0], X[1]});
+    int n_loc = int(loc.size()), size = 1;
+    MPI_Comm_size(comm, &size);
+    std::vector<int> counts(size), offsets(size + 1, 0);
+    MPI_Allgather(&n_loc, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+    for (int r = 0; r < size; ++r)
+      offsets[r + 1] = offsets[r] + counts[r];
+    std::vector<double> all(offsets[size]);
+    MPI_Allgatherv(loc.data(), n_loc, MPI_DOUBLE, all.data(), counts.data(),
+                   offsets.data(), MPI_DOUBLE, comm);
+    std::vector<std::array<double, 2>> env;
+    for (std::size_t k = 0; k + 1 < all.size(); k += 2)
+      env.push_back({all[k], all[k + 1]});
+    std::sort(env.begin(), env.end());
+    env.erase(std::unique(env.begin(), env.end()), env.end());
+    const auto V0 = _flow->velocity_space();
+    const std::vector<double> X0 = V0->tabulate_dof_coordinates(false);
+    const std::int32_t nblocks = V0->dofmap()->index_map->size_local()
+                                 + V0->dofmap()->index_map->num_ghosts();
+    for (std::int32_t d = 0; d < nblocks and env.size() >= 2; ++d)
+    {
+      const double x = X0[3 * d], y = X0[3 * d + 1];
+      auto it = std::upper_bound(env.begin(), env.end(),
+                                 std::array<double, 2>{x, 1e300});
+      if (it == env.begin() or it == env.end())
+        continue;
+      const auto& A = *(it - 1);
+      const auto& B = *it;
+      const double t = B[0] > A[0] ? (x - A[0]) / (B[0] - A[0]) : 0.0;
+      const double yc = (1 - t) * A[1] + t * B[1];
+      if (yc <= y_lim and y < yc - 1e-3 * g.rest_gap)
+      {
+        _gap_dofs.push_back(d);
+        _gap_nodes.push_back({A, B});
+        _gap_t.push_back(t);
+        _gap_fraction.push_back(y / yc);
+      }
+    }
+    mb.prescribed = _gap_dofs;
+  }
+  _motion = std::make_unique<ale::MeshMotion>(_mesh.mesh,
+                                              _flow->velocity_space(), mb, ap);
+  _loop
+      = std::make_unique<coupling::FixedPointCoupling>(comm, cp, coupling_csv);
   // Cells that can become porous: reference midpoint within the fold's
   // x-extent, below the attachment band
   const auto& mesh = *_mesh.mesh;
@@ -120,27 +178,60 @@ std::int64_t fsai::glottis::FlowGlottis::cells() const
   return _mesh.mesh->topology().index_map(2)->size_global();
 }
 
+std::array<double, 2> fsai::glottis::FlowGlottis::boundary_displacement(
+    const RigidMotion& m, const std::array<double, 2>& X, double lift) const
+{
+  // The fluid boundary is the fold surface moved rigidly (tapered towards
+  // the wall attachment) and lifted by `lift` as a whole
+  const double w = _profile.weight(X);
+  const auto u = m.displacement(X);
+  return {w * u[0], w * (u[1] + lift)};
+}
+
+double fsai::glottis::FlowGlottis::boundary_lift(const RigidMotion& m) const
+{
+  // The fold's half-gap g (lowest point of the rigidly moved surface). The
+  // fluid boundary stops at g_min: below g_min + b it is lifted as a whole
+  // by g_b − g with g_b = g_min + b exp((g − g_min − b)/b) (C¹, b = g_min),
+  // so its lowest point stays above g_min however far the fold crosses the
+  // axis. Lifting the whole surface keeps its shape: an earlier per-point
+  // clamp flattened the superior edge round onto the axis, and the cells
+  // under it, compressed 10× at one column and 20× at the next, inverted
+  // at p_sub = 1200 Pa. The part of the gap the fold occupies is porous.
+  double g = 1e300;
+  for (const auto& p : moved_surface(_profile, m))
+    g = std::min(g, p[1]);
+  const double b = _par.g_min;
+  if (g >= _par.g_min + b)
+    return 0.0;
+  return _par.g_min + b * std::exp((g - _par.g_min - b) / b) - g;
+}
+
 void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
 {
-  // The fold surface moves with the tapered rigid motion, but no closer to
-  // the axis than g_min. A hard clamp y → max(y, g_min) projects the steep
-  // superior edge's nodes onto one point (inverted cells at the first
-  // contact); below g_min + b the height is instead compressed smoothly and
-  // monotonically, y → g_min + b exp((y − g_min − b)/b) (C¹, b = g_min), so
-  // boundary nodes keep their order
-  const double b = _par.g_min;
   auto a = _motion->interface_displacement().x()->mutable_array();
+  const double lift = boundary_lift(m);
   for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
   {
-    const auto& X = _fold_X[i];
-    const double w = _profile.weight(X);
-    auto u = m.displacement(X);
-    u = {w * u[0], w * u[1]};
-    const double y = X[1] + u[1];
-    if (y < _par.g_min + b)
-      u[1] = _par.g_min + b * std::exp((y - _par.g_min - b) / b) - X[1];
+    const auto u = boundary_displacement(m, _fold_X[i], lift);
     a[2 * _fold_dofs[i]] = u[0];
     a[2 * _fold_dofs[i] + 1] = u[1];
+  }
+  // Algebraic gap motion: the column of nodes under the boundary point
+  // above (between boundary nodes A and B) moves with it horizontally (the axis
+  // nodes slide along the axis) and is compressed vertically, a node at height
+  // fraction s = y/y_s keeping s. The map (x, s) → (x + U_x(x), s Y(x)), Y the
+  // new surface height, has Jacobian (1 + U_x') Y > 0: no node passes the
+  // boundary above it however close the fold comes. (Shifting x by s U_x
+  // instead shears the columns: with the fold rotated by φ they tilt to a slope
+  // Y/U_x below the surface's φ and the cells under the superior edge invert.)
+  for (std::size_t i = 0; i < _gap_dofs.size(); ++i)
+  {
+    const auto ua = boundary_displacement(m, _gap_nodes[i][0], lift);
+    const auto ub = boundary_displacement(m, _gap_nodes[i][1], lift);
+    const double t = _gap_t[i];
+    a[2 * _gap_dofs[i]] = (1 - t) * ua[0] + t * ub[0];
+    a[2 * _gap_dofs[i] + 1] = _gap_fraction[i] * ((1 - t) * ua[1] + t * ub[1]);
   }
 }
 

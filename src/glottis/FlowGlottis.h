@@ -50,6 +50,11 @@ struct FlowGlottisParameters
   double h_far = 0.5e-3;  ///< mesh size away from the fold [m]
   double h_gap = 0.05e-3; ///< mesh size on the fold [m]
   double g_min = 0.02e-3; ///< closest approach of the fluid boundary [m]
+  /// Mesh motion of the gap between the medial surface and the axis:
+  /// "algebraic" (each node keeps its height fraction y/y_s under the
+  /// surface point above it; the rest of the mesh by the elastic
+  /// extension) or "elastic" (all by the extension)
+  std::string gap_motion = "algebraic";
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };
@@ -95,7 +100,20 @@ private:
   std::shared_ptr<dolfinx::fem::Function<double>> _F; // nodal forces
   std::vector<std::int32_t> _fold_dofs; // velocity-space blocks on the fold
   std::vector<std::array<double, 2>> _fold_X; // their reference coordinates
-  std::vector<std::int32_t> _candidates;      // cells that may turn porous
+  /// Algebraic gap motion: dof blocks under the medial region
+  std::vector<std::int32_t> _gap_dofs;
+  /// the two boundary nodes (reference) above each, the position t between
+  /// them and the height fraction under their chord
+  std::vector<std::array<std::array<double, 2>, 2>> _gap_nodes;
+  std::vector<double> _gap_t, _gap_fraction;
+  /// Displacement of the fluid boundary at reference surface point X:
+  /// tapered rigid motion plus the vertical lift
+  std::array<double, 2> boundary_displacement(const RigidMotion& m,
+                                              const std::array<double, 2>& X,
+                                              double lift) const;
+  /// Vertical lift of the whole fluid boundary that keeps it above g_min
+  double boundary_lift(const RigidMotion& m) const;
+  std::vector<std::int32_t> _candidates; // cells that may turn porous
   std::array<double, 2> _q_n{}, _q_nn{};
   int _steps = 0;
   double _t = 0;

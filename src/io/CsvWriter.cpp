@@ -23,6 +23,8 @@ fsai::io::CsvWriter::CsvWriter(MPI_Comm comm, const std::string& path,
     for (std::size_t i = 0; i < _columns.size(); ++i)
       _out << (i ? "," : "") << _columns[i];
     _out << '\n' << std::flush;
+    if (!_out)
+      throw std::runtime_error("cannot write '" + path + "' (disk full?)");
   }
 }
 //-----------------------------------------------------------------------------
