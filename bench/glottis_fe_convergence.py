@@ -38,6 +38,8 @@ rows = []
 base = None
 for name, run in (("default", "run_glottis_fe_default"), ("dt/2", "run_glottis_conv_dt1e-5"),
                   ("h/1.43", "run_glottis_conv_fine")):
+    if not os.path.exists(os.path.join(res, run, "series.csv")):
+        continue
     f0, qp, n = stats(run)
     if base is None:
         base = (f0, qp)
