@@ -38,6 +38,7 @@ struct ModalParameters
   int layers = 1;
   int order = 2;
   int modes = 10;
+  bool check_result = false;
   fsai::structure::Material cover{2e3, 0.4, 1000.0};
 
   void bind(fsai::common::Parameters& p)
@@ -46,6 +47,9 @@ struct ModalParameters
     p.add("layers", layers, "1 (homogeneous) or 2 (body and cover)");
     p.add("order", order, "Lagrange degree of the displacement (1 or 2)");
     p.add("modes", modes, "number of modes");
+    p.add("check-result", check_result,
+          "fail unless f1 is in the male phonation range 85-155 Hz "
+          "(shared/DESIGN.md §5)");
     p.add("cover.E", cover.E, "Young's modulus of the cover [Pa]");
     p.add("cover.nu", cover.nu, "Poisson's ratio of the cover");
     p.add("cover.rho", cover.rho, "density of the cover [kg/m^3]");
@@ -183,5 +187,13 @@ int main(int argc, char* argv[])
                                 .count();
         fsai::log::info("Wall time {:.2f} s; wrote {}/summary.json", wall,
                         mp.output);
+
+        // 6. Self-check: the fold's lowest mode in the male F0 range
+        if (mp.check_result and (freqs.empty() or freqs[0] < 85.0 or freqs[0] > 155.0))
+        {
+          throw std::runtime_error(fmt::format(
+              "check failed: f1 = {:.2f} Hz is outside the male range 85-155 Hz",
+              freqs.empty() ? NAN : freqs[0]));
+        }
       });
 }

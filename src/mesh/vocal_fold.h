@@ -23,13 +23,20 @@ namespace fsai::mesh
 /// superior-medial corner (semi-axes a, b), a vertical medial (contact)
 /// surface of height t_medial, a rounded inferior-medial corner (radius
 /// r_inf), and a straight inferior surface running down to the lateral wall.
-/// Defaults: depth 8.4 mm and height 10 mm (M5-sized), 17 mm long (adult
-/// male membranous fold, 15–18 mm).
+/// Defaults: depth 5 mm, height 10 mm, length 16 mm. The length is an adult
+/// male membranous fold (15–18 mm, Hirano 1981). The depth is the
+/// vibrating tissue only (cover, ligament and the medial part of the
+/// thyroarytenoid, ≈ 5 mm in Hirano's coronal sections); the face x = 0 is
+/// the attachment to the stiffer lateral muscle. With the homogeneous
+/// E = 8 kPa of the source paper this puts f1 in the male range (100 Hz;
+/// the paper's own geometry: 101.8 Hz). The M5-sized depth 8.4 mm with
+/// length 17 mm gives f1 = 61 Hz at 8 kPa — below the range: a fold that
+/// deep needs a stiffer body (see `--layers 2`).
 struct VocalFoldGeometry
 {
-  double depth = 8.4e-3;  ///< lateral → medial extent [m]
+  double depth = 5e-3;    ///< lateral → medial extent [m]
   double height = 10e-3;  ///< at the lateral wall [m]
-  double length = 17e-3;  ///< anterior → posterior [m]
+  double length = 16e-3;  ///< anterior → posterior [m]
   double a = 2e-3;        ///< superior-medial corner, horizontal semi-axis
   double b = 2e-3;        ///< superior-medial corner, vertical semi-axis
   double t_medial = 1e-3; ///< vertical medial surface
