@@ -114,56 +114,21 @@ int main(int argc, char* argv[])
       [](fsai::common::Runtime& rt)
       {
         SceneParameters sp;
-        fsai::glottis::GlottisGeometry geo;
-        fsai::glottis::TwoDofParameters vf;
-        vf.h0 = 0.05e-3; // a small perturbation from rest
-        fsai::glottis::ContactParameters cp;
-        fsai::glottis::FlowGlottisParameters fe;
-        fsai::fluid::FluidParameters fp; // air
-        fp.sigma_p = 1e7;                // porous closure: see FlowGlottis.h
-        fp.inlet_eps = 1e3; // E11a with ε large: total-pressure inlet
-        fsai::ale::MeshMotionParameters ap;
-        // Plain pseudo-elastic extension: survives the closing gap (fluid
-        // boundary at g_min = 10 % of the rest gap) and costs one solve per
-        // move; Jacobian stiffening (6 solves) is 60x dearer per move and
-        // size stiffening inverted a gap cell at t = 24.2 ms (g = 0.066 mm)
-        ap.stiffening = "none";
-        // MUMPS: the fieldsplit iterative solver (26 ms vs 34 ms per solve)
-        // stalls (KSP_DIVERGED_ITS) once the porous term σ_P χ ≫ ρ/Δt
-        // switches on in the closing gap
-        fp.solver = "direct";
-        fsai::coupling::CouplingParameters cpl;
-        cpl.atol = 1e-11; // [m] on (h, 1 mm·φ)
-        // The porous region switches cell-wise between coupling iterations,
-        // so near closure the interface map is discontinuous and a step can
-        // stall (relative residual 5.7e-4 after 50 iterations at t = 38.6 ms
-        // in one 2-rank run): such steps are logged, counted in the summary
-        // and the run goes on
-        cpl.on_failure = "warn";
+        fsai::glottis::FlowGlottisSetup setup;
+        auto& geo = setup.geometry;
+        auto& vf = setup.fold;
+        auto& cp = setup.contact;
+        auto& fe = setup.fe;
         fsai::common::Parameters params(rt.program(),
                                         "Self-oscillating vocal folds that "
                                         "close the glottis");
         sp.bind(params);
-        geo.bind(params);
-        vf.bind(params);
-        cp.bind(params);
-        fe.bind(params);
-        fp.bind(params);
-        ap.bind(params);
-        cpl.bind(params);
+        setup.bind(params);
         params.parse(rt.app_args());
         sp.validate();
         if (!sp.restart.empty())
           sp.output = sp.restart; // continue in the run's own folder
-        geo.validate();
-        vf.validate();
-        cp.validate();
-        fe.p_sub = sp.p_sub;
-        fe.dt = sp.dt;
-        fe.validate();
-        fp.validate();
-        ap.validate();
-        cpl.validate();
+        setup.validate(sp.p_sub, sp.dt);
         params.print();
         fsai::io::prepare_output_dir(rt.comm(), sp.output);
         fsai::io::RunSummary summary(rt.comm(), rt.program());
@@ -214,8 +179,8 @@ int main(int argc, char* argv[])
         else
         {
           fem = std::make_unique<fsai::glottis::FlowGlottis>(
-              rt.comm(), profile, vf, cp, fe, fp, ap, cpl,
-              sp.output + "/coupling.csv");
+              rt.comm(), profile, vf, cp, fe, setup.fluid, setup.ale,
+              setup.coupling, sp.output + "/coupling.csv");
           fsai::log::info("FE flow: {} cells, {} dofs", fem->cells(),
                           fem->flow_dofs());
           summary.set("flow_dofs", fem->flow_dofs());

@@ -189,11 +189,13 @@ int main(int argc, char* argv[])
                         mp.output);
 
         // 6. Self-check: the fold's lowest mode in the male F0 range
-        if (mp.check_result and (freqs.empty() or freqs[0] < 85.0 or freqs[0] > 155.0))
+        if (mp.check_result
+            and (freqs.empty() or freqs[0] < 85.0 or freqs[0] > 155.0))
         {
-          throw std::runtime_error(fmt::format(
-              "check failed: f1 = {:.2f} Hz is outside the male range 85-155 Hz",
-              freqs.empty() ? NAN : freqs[0]));
+          throw std::runtime_error(
+              fmt::format("check failed: f1 = {:.2f} Hz is outside the male "
+                          "range 85-155 Hz",
+                          freqs.empty() ? NAN : freqs[0]));
         }
       });
 }

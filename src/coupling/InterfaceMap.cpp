@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "InterfaceMap.h"
 #include <cmath>
+#include <common/mpi_gather.h>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/mesh/utils.h>
@@ -11,21 +12,7 @@ using namespace dolfinx;
 
 namespace
 {
-/// All ranks' `local` arrays, concatenated in rank order
-std::vector<double> allgather(MPI_Comm comm, const std::vector<double>& local)
-{
-  int size;
-  MPI_Comm_size(comm, &size);
-  int n = int(local.size());
-  std::vector<int> counts(size), offsets(size + 1, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  for (int r = 0; r < size; ++r)
-    offsets[r + 1] = offsets[r] + counts[r];
-  std::vector<double> all(offsets[size]);
-  MPI_Allgatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(),
-                 offsets.data(), MPI_DOUBLE, comm);
-  return all;
-}
+using fsai::common::allgather;
 
 /// Index of the point of `pts` (3 per point) within tol of p, or −1
 std::int64_t find(const std::vector<double>& pts, const double* p, double tol)

@@ -59,6 +59,26 @@ struct FlowGlottisParameters
   void validate() const;
 };
 
+/// Everything the FE glottis scene is built from ([glottis], [vf],
+/// [contact], [fe], [closure], [fluid], [ale], [coupling] sections), with
+/// the scene's defaults: fsai_glottis and fsai_demo both start from it (the
+/// command line may override any of it)
+struct FlowGlottisSetup
+{
+  GlottisGeometry geometry;
+  TwoDofParameters fold;
+  ContactParameters contact;
+  FlowGlottisParameters fe;
+  fluid::FluidParameters fluid;
+  ale::MeshMotionParameters ale;
+  coupling::CouplingParameters coupling;
+
+  FlowGlottisSetup();
+  void bind(fsai::common::Parameters& p);
+  /// Validate every part, with the scene's subglottal pressure and step
+  void validate(double p_sub, double dt);
+};
+
 class FlowGlottis
 {
 public:
@@ -75,6 +95,9 @@ public:
   const ale::MeshMotion& motion() const { return *_motion; }
   std::int64_t flow_dofs() const { return _flow->dofs(); }
   std::int64_t cells() const;
+  /// Reference (rest) coordinates of the velocity dof blocks, owned and
+  /// ghost, 3 per block
+  const std::vector<double>& reference_coordinates() const { return _X_ref; }
 
 private:
   /// The coupling map: fold state guess → new fold state
@@ -100,6 +123,7 @@ private:
   std::shared_ptr<dolfinx::fem::Function<double>> _F; // nodal forces
   std::vector<std::int32_t> _fold_dofs; // velocity-space blocks on the fold
   std::vector<std::array<double, 2>> _fold_X; // their reference coordinates
+  std::vector<double> _X_ref;                 // all velocity blocks, reference
   /// Algebraic gap motion: dof blocks under the medial region
   std::vector<std::int32_t> _gap_dofs;
   /// the two boundary nodes (reference) above each, the position t between

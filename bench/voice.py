@@ -1,0 +1,109 @@
+#!/usr/bin/python3
+"""The voice scene (fsai_demo, 2 MPI ranks): speed vs accuracy over three
+resolutions of flow mesh, acoustic mesh and time step, and the comparison
+runs of issue 8 on the coarse resolution — vowels a and i, the tract
+replaced by a short straight tube, the Lighthill source without its taper
+(truncated at the flow outlet), and an absorbing layer instead of the
+Sommerfeld condition.
+
+Errors: f0 of the sound against the fold's f0 of the same run; F1, F2 from
+the sound (LPC) against the transfer-function formants of the same tract
+(1D model); f0 and SPL also against the finest resolution.
+
+usage: bench/voice.py [BUILD_DIR] [--only NAME,...] [--rerun]
+writes bench/results/voice.csv, voice.png; run folders
+bench/results/run_voice_<name>/ (series, spectrum, WAV, summary)
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+here = os.path.dirname(os.path.abspath(__file__))
+ap = argparse.ArgumentParser()
+ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
+ap.add_argument("--only", default="")
+ap.add_argument("--rerun", action="store_true")
+args = ap.parse_args()
+exe = os.path.join(args.build, "demos", "fsai_demo")
+out = os.path.join(here, "results")
+env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+
+coarse = ["--fe.h_far", "1e-3", "--fe.h_gap", "0.1e-3", "--voice.h", "0.008", "--dt", "4e-5"]
+medium = ["--fe.h_far", "0.7e-3", "--fe.h_gap", "0.07e-3", "--voice.h", "0.006", "--dt", "3e-5"]
+runs = {
+    "u_coarse": coarse,
+    "u_medium": medium,
+    "u_default": [],
+    "a_coarse": coarse + ["--vowel", "a"],
+    "i_coarse": coarse + ["--vowel", "i"],
+    "tube_coarse": coarse + ["--tract", "tube"],
+    "notaper_coarse": coarse + ["--voice.taper=false"],
+    "pml_coarse": coarse + ["--radiation", "pml"],
+}
+only = [s for s in args.only.split(",") if s]
+rows = []
+for name, extra in runs.items():
+    if only and name not in only:
+        continue
+    run = os.path.join(out, f"run_voice_{name}")
+    if args.rerun or not os.path.exists(os.path.join(run, "summary.json")):
+        cmd = ["mpirun", "-n", "2", exe, "--write_every", "0", "--output", run] + extra
+        print(" ".join(cmd), flush=True)
+        subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(run, "summary.json")) as f:
+        s = json.load(f)
+    F, Ft = s["formants_from_sound_hz"], s["tract_formants_hz"]
+    err = [100 * (F[k] - Ft[k]) / Ft[k] if k < len(F) else float("nan") for k in range(2)]
+    rows.append(dict(name=name, vowel=s["vowel"], wall_s=s["loop_wall_s"],
+                     flow_dofs=s["flow_dofs"], acoustic_dofs=s["acoustic_dofs"],
+                     f0_fold=s["f0_fold_hz"], f0_sound=s["f0_hz"],
+                     f0_err=100 * (s["f0_hz"] - s["f0_fold_hz"]) / s["f0_fold_hz"],
+                     F1=F[0] if F else float("nan"), F2=F[1] if len(F) > 1 else float("nan"),
+                     F1_tract=Ft[0], F2_tract=Ft[1], F1_err=err[0], F2_err=err[1],
+                     spl_db=s["spl_db"], cycles=s["cycles"],
+                     closes=s["closes_every_cycle"]))
+    r = rows[-1]
+    print(f"{name:15s} wall {r['wall_s']:7.1f} s  f0 fold {r['f0_fold']:7.2f} sound "
+          f"{r['f0_sound']:7.2f} ({r['f0_err']:+.2f} %)  F1 {r['F1']:6.0f}/{r['F1_tract']:6.0f} "
+          f"({r['F1_err']:+.1f} %)  F2 {r['F2']:6.0f}/{r['F2_tract']:6.0f} ({r['F2_err']:+.1f} %)"
+          f"  SPL {r['spl_db']:.1f} dB", flush=True)
+
+if rows:
+    path = os.path.join(out, "voice.csv" if not only else "voice_partial.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+res = [r for r in rows if r["name"] in ("u_coarse", "u_medium", "u_default")]
+if len(res) == 3:
+    fine = res[-1]
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    for key, lab in (("f0_sound", "f0 vs finest"), ("F1", "F1 vs finest"),
+                     ("F2", "F2 vs finest")):
+        ax.loglog([r["wall_s"] for r in res[:-1]],
+                  [max(abs(r[key] - fine[key]) / fine[key] * 100, 1e-3) for r in res[:-1]],
+                  "o-", label=lab)
+    ax.loglog([r["wall_s"] for r in res[:-1]],
+              [max(abs(r["spl_db"] - fine["spl_db"]), 1e-3) for r in res[:-1]],
+              "s--", label="SPL vs finest [dB]")
+    ax.loglog([r["wall_s"] for r in res], [max(abs(r["F1_err"]), 1e-3) for r in res],
+              "^:", label="F1 vs tract (1D) [%]")
+    ax.loglog([r["wall_s"] for r in res], [max(abs(r["F2_err"]), 1e-3) for r in res],
+              "v:", label="F2 vs tract (1D) [%]")
+    for r in res:
+        ax.annotate(r["name"].split("_")[1], (r["wall_s"], max(abs(r["F1_err"]), 1e-3)),
+                    fontsize=7)
+    ax.set_xlabel("wall time of 0.1 s simulated [s] (2 ranks)")
+    ax.set_ylabel("error [%] (SPL: dB)")
+    ax.set_title("fsai_demo --vowel u: accuracy vs cost")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "voice.png"), dpi=120)

@@ -1,0 +1,525 @@
+// Copyright (C) 2026 fsai developers
+//
+// fsai_demo: the voice — airflow, self-oscillating vocal folds that close
+// the glottis, and the sound that forms in the vocal tract (shared/DESIGN.md
+// §2, paper §2.4, §3.3, §3.4). The glottis scene with the FE flow
+// (FlowGlottis: ALE Navier–Stokes, 2-DOF fold, closure, Hertz contact)
+// drives, one way, the acoustic wave equation (E14, E21, WaveSolver) on a
+// fixed domain that contains the flow domain Ω^f_0 and continues it by the
+// vowel's vocal tract to the lips and a radiation region
+// (mesh::voice_domain). Each flow step: Lighthill's source ρ0 v v from the
+// converged flow (FlowSource, reference-configuration interpolation),
+// tapered to zero before the flow outlet and at the subglottal inlet; the
+// fold surface vibrates (∂p'/∂n = −ρ0 a·n); then one acoustic Newmark step
+// with the same Δt.
+//
+// Sample runs:
+//   ./fsai_demo --vowel u                  # 0.1 s, 2 ranks recommended
+//   ./fsai_demo --quick                    # short coarse run (tests)
+//   ./fsai_demo --vowel a --radiation pml
+//   ./fsai_demo --tract tube               # a short straight tube instead
+//   ./fsai_demo --voice.taper false        # truncated source (fails)
+//
+// Outputs in --output (default results/fsai_demo): series.csv (t, g, Q, h,
+// φ, p' at the lips and the microphone, ...), sound.wav (microphone, 44.1
+// kHz, 16 bit), spectrum.csv, voice.png, flow.xdmf (velocity, pressure,
+// porous indicator, mesh displacement), acoustic.xdmf (p'), summary.json
+// (vowel, f0_hz, formants_from_sound_hz, tract_formants_hz, spl_db,
+// sim_time_s, wav, ...).
+
+#include <acoustics/FlowSource.h>
+#include <acoustics/WaveSolver.h>
+#include <acoustics/sound.h>
+#include <acoustics/spectrum.h>
+#include <acoustics/tube_model.h>
+#include <common/Parameters.h>
+#include <common/Runtime.h>
+#include <common/errors.h>
+#include <common/log.h>
+#include <common/timer.h>
+#include <dolfinx/fem/utils.h>
+#include <glottis/FlowGlottis.h>
+#include <glottis/waveform.h>
+#include <io/CsvWriter.h>
+#include <io/PointProbes.h>
+#include <io/Progress.h>
+#include <io/RunSummary.h>
+#include <io/TimeSeriesWriter.h>
+#include <io/output_dir.h>
+#include <mesh/area_function.h>
+#include <mesh/voice_domain.h>
+
+#include <chrono>
+#include <cmath>
+#include <fmt/ranges.h>
+
+namespace
+{
+struct VoiceParameters
+{
+  std::string output = "results/fsai_demo";
+  std::string vowel = "u";
+  std::string area_function; // overrides vowel
+  std::string tract = "vowel";
+  double tube_length = 0.04; // --tract tube [m]
+  double tube_area = 3e-4;   // [m²]
+  double p_sub = 1200;       // [Pa]
+  double duration = 0.1;     // [s]
+  double dt = 2e-5;          // [s]
+  bool quick = false;
+  std::string radiation = "sommerfeld";
+  double layer = 0.02;       // [m]
+  bool taper = true;
+  bool lighthill = true;  // Lighthill's source on
+  bool wall = true;       // vibrating fold surface on
+  bool source_average = true; // Lighthill velocity at the step midpoint
+  double taper_start = 0.02; // ramp from here before the flow outlet [m]
+  double taper_end = 0.005;  // to zero here before the outlet [m]
+  double taper_inlet = 0.005; // ramp up over this length after the inlet [m]
+  double mic_distance = 0.03; // [m] beyond the lips, on the axis
+  double stats_from = 0.5;
+  int write_every = 100;
+  int wav_rate = 44100;
+  bool check_result = false;
+  double check_f0_tolerance = 0.01; // relative
+
+  void bind(fsai::common::Parameters& p)
+  {
+    p.add("output", output, "output folder");
+    p.add_choice("vowel", vowel, {"u", "a", "i"},
+                 "vowel of the shipped area functions (meshes/vowel_*.csv)");
+    p.add("area-function", area_function,
+          "area-function CSV (x_cm,area_cm2); overrides --vowel");
+    p.add_choice("tract", tract, {"vowel", "tube"},
+                 "vocal tract: the vowel's, or a short straight tube");
+    p.add("tube.length", tube_length, "--tract tube: length [m]");
+    p.add("tube.area", tube_area, "--tract tube: area [m^2]");
+    p.add("p-sub", p_sub, "subglottal pressure [Pa]");
+    p.add("duration", duration, "simulated time [s]");
+    p.add("dt", dt, "time step of flow and sound [s]");
+    p.add("quick", quick,
+          "short coarse run for tests (coarser meshes, 0.04 s, dt 5e-5)");
+    p.add_choice("radiation", radiation, {"sommerfeld", "pml"},
+                 "radiation boundary: Sommerfeld (with the curvature term) "
+                 "or an absorbing layer");
+    p.add("layer", layer, "absorbing-layer thickness for --radiation pml [m]");
+    p.add("voice.taper", taper,
+          "taper Lighthill's source to zero before the flow outlet (false: "
+          "truncated source, for the failure study)");
+    p.add("voice.lighthill", lighthill,
+          "Lighthill's source (false: the fold surface's vibration only)");
+    p.add("voice.wall", wall,
+          "vibrating fold surface (false: Lighthill's source only)");
+    p.add("voice.source_average", source_average,
+          "Lighthill's source from (v_n + v_n+1)/2 (false: v_n+1)");
+    p.add("voice.taper_start", taper_start,
+          "taper starts this far before the flow outlet [m]");
+    p.add("voice.taper_end", taper_end,
+          "source is zero from this far before the flow outlet [m]");
+    p.add("voice.taper_inlet", taper_inlet,
+          "source ramps up over this length after the inlet [m]");
+    p.add("mic_distance", mic_distance,
+          "microphone on the axis, this far beyond the lips [m]");
+    p.add("stats_from", stats_from,
+          "statistics and sound analysis over t >= stats_from * duration");
+    p.add("write_every", write_every, "XDMF output every N steps (0: none)");
+    p.add("wav_rate", wav_rate, "sample rate of sound.wav [Hz]");
+    p.add("check-result", check_result,
+          "fail unless the sound is finite and audible (SPL > 40 dB), its "
+          "f0 matches the fold's within --check.f0_tolerance and the fold "
+          "f0 is in the male range 85-155 Hz");
+    p.add("check.f0_tolerance", check_f0_tolerance,
+          "relative tolerance of --check-result on the sound's f0 (0: not checked)");
+  }
+  void validate() const
+  {
+    fsai::require_positive("--p-sub", p_sub);
+    fsai::require_positive("--duration", duration);
+    fsai::require_positive("--dt", dt);
+    fsai::require(dt <= duration / 10, "--dt", "<= --duration / 10", dt);
+    fsai::require_positive("--tube.length", tube_length);
+    fsai::require_positive("--tube.area", tube_area);
+    fsai::require_positive("--layer", layer);
+    fsai::require(taper_start > taper_end and taper_end >= 0,
+                  "--voice.taper_start", "> --voice.taper_end >= 0",
+                  taper_start);
+    fsai::require(taper_inlet >= 0, "--voice.taper_inlet", ">= 0", taper_inlet);
+    fsai::require_positive("--mic_distance", mic_distance);
+    fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
+    fsai::require(write_every >= 0, "--write_every", ">= 0", write_every);
+    fsai::require(wav_rate == 44100 or wav_rate == 48000, "--wav_rate",
+                  "44100 or 48000", wav_rate);
+  }
+};
+
+/// Taper χ of Lighthill's source (P1 nodal values): 1 inside the flow
+/// domain, cos² ramps to 0 towards the inlet and before the outlet
+double source_taper(double x, double x_in, double x_out,
+                    const VoiceParameters& vp)
+{
+  if (!vp.taper)
+    return 1.0;
+  auto ramp = [](double s) // 0 → 0, 1 → 1
+  {
+    s = std::clamp(s, 0.0, 1.0);
+    return std::pow(std::sin(0.5 * M_PI * s), 2);
+  };
+  const double up
+      = vp.taper_inlet > 0 ? ramp((x - x_in) / vp.taper_inlet) : 1.0;
+  const double a = x_out - vp.taper_start, b = x_out - vp.taper_end;
+  return up * (1.0 - ramp((x - a) / (b - a)));
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  return fsai::common::run_main(
+      argc, argv,
+      [](fsai::common::Runtime& rt)
+      {
+        namespace ac = fsai::acoustics;
+        const auto wall0 = std::chrono::steady_clock::now();
+
+        // 1. Parameters: the glottis scene's (FE flow) and the sound's
+        VoiceParameters vp;
+        fsai::glottis::FlowGlottisSetup setup;
+        auto& geo = setup.geometry;
+        auto& vf = setup.fold;
+        auto& fe = setup.fe;
+        ac::WaveParameters wave;
+        fsai::mesh::VoiceDomainGeometry vg;
+        fsai::common::Parameters params(rt.program(),
+                                        "The voice: flow, folds and sound");
+        vp.bind(params);
+        setup.bind(params);
+        wave.bind(params);
+        vg.bind(params);
+        // --quick sets coarse defaults before parsing, so any option given
+        // with it still overrides them
+        for (const auto& arg : rt.app_args())
+          vp.quick |= arg == "--quick" or arg == "--quick=true";
+        if (vp.quick)
+        {
+          // Coarse flow and acoustic meshes, a larger step and a larger
+          // initial perturbation so the oscillation is under way within
+          // 0.04 s (the sound's f0 needs two periods in the window)
+          vp.duration = 0.04;
+          vp.dt = 5e-5;
+          fe.h_far = 1e-3;
+          fe.h_gap = 0.1e-3;
+          vg.h = 0.008;
+          vf.h0 = 0.15e-3;
+          vp.stats_from = 0.4;
+          vp.write_every = 0;
+        }
+        params.parse(rt.app_args());
+        vp.validate();
+        setup.validate(vp.p_sub, vp.dt);
+        wave.validate();
+        vg.layer = vp.radiation == "pml" ? vp.layer : 0.0;
+        vg.validate();
+        fsai::require(vp.mic_distance < vg.radius, "--mic_distance",
+                      "inside the radiation region (< --voice.radius)",
+                      vp.mic_distance);
+        params.print();
+        fsai::io::prepare_output_dir(rt.comm(), vp.output);
+        fsai::io::RunSummary summary(rt.comm(), rt.program());
+        summary.set_parameters(params.to_json());
+
+        // 2. The tract: the vowel's area function (or a straight tube),
+        // its first part replaced by the flow domain's channel, and the 1D
+        // transfer-function formants of exactly that tract (baffled lips)
+        const fsai::glottis::FoldProfile profile(geo);
+        const std::string label
+            = vp.tract == "tube"
+                  ? "tube"
+                  : (vp.area_function.empty() ? vp.vowel : vp.area_function);
+        const fsai::mesh::AreaFunction vowel
+            = vp.tract == "tube"
+                  ? fsai::mesh::uniform_tube(geo.outlet_length + vp.tube_length,
+                                             vp.tube_area)
+                  : fsai::mesh::read_area_function(
+                      vp.area_function.empty()
+                          ? fsai::mesh::vowel_file(vp.vowel)
+                          : vp.area_function);
+        const fsai::mesh::AreaFunction tract
+            = fsai::mesh::voice_tract(vowel, profile);
+        std::vector<double> tract_formants;
+        for (const auto& r : ac::tube_resonances(
+                 fsai::mesh::resample(tract, true, 5e-4), 5000.0, wave.c0,
+                 wave.rho0, ac::LipEnd::flanged))
+        {
+          if (tract_formants.size() < 4)
+            tract_formants.push_back(r.f);
+        }
+        fsai::log::info("tract: {} ({:.2f} cm); transfer-function formants "
+                        "(1D, flanged lips) {::.0f} Hz",
+                        tract.source, 100 * tract.length(), tract_formants);
+
+        // 3. Flow (the glottis scene) and sound on their own meshes
+        auto fem = std::make_unique<fsai::glottis::FlowGlottis>(
+            rt.comm(), profile, vf, setup.contact, fe, setup.fluid, setup.ale,
+            setup.coupling,
+            vp.output + "/coupling.csv");
+        fsai::mesh::MeshData am = [&]
+        {
+          fsai::common::ScopedTimer t("demo: acoustic mesh");
+          return fsai::mesh::voice_domain(rt.comm(), profile, tract, vg);
+        }();
+        auto facets = [&](const char* name)
+        { return am.facet_tags->find(am.facet_tag(name)); };
+        ac::WaveBoundaries wb;
+        // Subglottal end: sound-hard (the narrow glottis isolates the
+        // tract from it; its own λ/2 resonance, 8.6 kHz, is out of band)
+        wb.radiation = facets("radiation");
+        wb.radiation_beta = 0.5 / (vg.radius + vg.layer); // planar: 1/(2R)
+        wb.vibrating = facets("fold");
+        std::shared_ptr<dolfinx::fem::Function<double>> sigma;
+        const double x_lips = geo.fold_length + tract.length();
+        if (vp.radiation == "pml")
+        {
+          sigma = ac::absorbing_layer(
+              am.mesh, am.cell_tags->find(am.cell_tag("layer")),
+              {x_lips, 0.0, 0.0}, vg.radius, vg.layer, wave.c0, 1e-3);
+        }
+        ac::WaveSolver sound(am.mesh, 1, false, wave, wb, vp.dt, sigma, true);
+        fsai::log::info("FE flow: {} cells, {} dofs; acoustics: {} cells, {} "
+                        "dofs",
+                        fem->cells(), fem->flow_dofs(),
+                        am.mesh->topology().index_map(2)->size_global(),
+                        sound.dofs());
+        summary.set("flow_dofs", fem->flow_dofs());
+        summary.set("acoustic_dofs", sound.dofs());
+        summary.set("tract_length_m", tract.length());
+        summary.set("vowel", label);
+        summary.set("tract_formants_hz", tract_formants);
+
+        // Source transfer and taper; the fold's surface nodes
+        ac::FlowSource source(rt.comm(), *fem->flow().velocity_space(),
+                              fem->reference_coordinates(),
+                              *sound.flow_velocity().function_space());
+        {
+          auto& chi = sound.taper();
+          const auto X = chi.function_space()->tabulate_dof_coordinates(false);
+          auto c = chi.x()->mutable_array();
+          const double x_in = -geo.inlet_length,
+                       x_out = geo.fold_length + geo.outlet_length;
+          for (std::size_t i = 0; i < c.size(); ++i)
+            c[i] = source_taper(X[3 * i], x_in, x_out, vp);
+        }
+        const auto Va = sound.wall_acceleration().function_space();
+        const auto fold_dofs
+            = dolfinx::fem::locate_dofs_topological(*Va, 1, facets("fold"));
+        std::vector<std::array<double, 2>> fold_X;
+        {
+          const auto X = Va->tabulate_dof_coordinates(false);
+          for (auto d : fold_dofs)
+            fold_X.push_back({X[3 * d], X[3 * d + 1]});
+        }
+        fsai::io::PointProbes probes(
+            am.mesh, {{x_lips, 0.0, 0.0}, {x_lips + vp.mic_distance, 0.0, 0.0}});
+
+        std::unique_ptr<fsai::io::TimeSeriesWriter> flow_xdmf, sound_xdmf;
+        if (vp.write_every > 0)
+        {
+          auto& f = fem->flow();
+          flow_xdmf = std::make_unique<fsai::io::TimeSeriesWriter>(
+              vp.output + "/flow.xdmf",
+              std::vector<fsai::io::TimeSeriesWriter::Field>{
+                  f.velocity(), f.pressure(), f.porous_field(),
+                  fem->motion().displacement()});
+          sound_xdmf = std::make_unique<fsai::io::TimeSeriesWriter>(
+              vp.output + "/acoustic.xdmf",
+              std::vector<fsai::io::TimeSeriesWriter::Field>{sound.pressure()});
+        }
+
+        // 4. Time loop: flow step (coupled), then one acoustic step
+        fsai::io::CsvWriter csv(rt.comm(), vp.output + "/series.csv",
+                                {"t_s", "gap_m", "Q_m3s", "h_m", "phi_rad",
+                                 "contact_force_N", "p_lips_pa", "p_mic_pa",
+                                 "iterations"});
+        const long n = std::lround(vp.duration / vp.dt);
+        std::vector<double> t, g, Q, p_mic, p_lips;
+        long its = 0;
+        int unconverged = 0;
+        fsai::io::Progress progress("step", double(n), 5.0);
+        std::array<double, 2> qdot_prev = fem->fold().qdot();
+        auto v_new = std::make_shared<dolfinx::fem::Function<double>>(
+            sound.flow_velocity().function_space());
+        auto v_old = std::make_shared<dolfinx::fem::Function<double>>(
+            sound.flow_velocity().function_space());
+        const auto loop0 = std::chrono::steady_clock::now();
+        for (long k = 1; k <= n; ++k)
+        {
+          const auto s = fem->step();
+          {
+            fsai::common::ScopedTimer timer("demo: sound step");
+            if (vp.lighthill)
+            {
+              // The source at the step's midpoint, v = (v_n + v_{n+1})/2
+              // (the trapezoidal rule's own load): the flow's step-to-step
+              // (−1)^n content, which the undamped Newmark scheme would
+              // store in unresolved high-frequency modes, is removed
+              source.transfer(*fem->flow().velocity(), *v_new);
+              auto vs = sound.flow_velocity().x()->mutable_array();
+              const auto vn = v_new->x()->array();
+              auto vo = v_old->x()->mutable_array();
+              for (std::size_t i = 0; i < vs.size(); ++i)
+              {
+                vs[i] = vp.source_average ? 0.5 * (vn[i] + vo[i]) : vn[i];
+                vo[i] = vn[i];
+              }
+            }
+            // Fold surface acceleration: tapered rigid motion (as the flow
+            // boundary), a = w (∂u/∂h q̈_h + ∂u/∂φ q̈_φ) with the step's mean
+            // acceleration q̈ = (q̇_{n+1} − q̇_n)/Δt = (q̈_n + q̈_{n+1})/2.
+            // Newmark's end-of-step q̈ carries an undamped (−1)^n part
+            // whenever the load jumps (contact, porous switching); the mean
+            // is free of it (the trapezoidal rule's own acceleration)
+            const auto& fold = fem->fold();
+            const auto m = fold.motion();
+            const std::array<double, 2> qdd
+                = {(fold.qdot()[0] - qdot_prev[0]) / vp.dt,
+                   (fold.qdot()[1] - qdot_prev[1]) / vp.dt};
+            qdot_prev = fold.qdot();
+            auto a = sound.wall_acceleration().x()->mutable_array();
+            for (std::size_t i = 0; vp.wall and i < fold_dofs.size(); ++i)
+            {
+              const auto d = m.derivatives(fold_X[i]);
+              const double w = profile.weight(fold_X[i]);
+              for (int c = 0; c < 2; ++c)
+                a[2 * fold_dofs[i] + c] = w * (d[0][c] * qdd[0] + d[1][c] * qdd[1]);
+            }
+            sound.step();
+          }
+          const auto p = probes.values(*sound.pressure());
+          if (!std::isfinite(p[0]) or !std::isfinite(p[1]))
+          {
+            throw std::runtime_error(fmt::format(
+                "acoustic pressure is not finite at t = {:.6f} s (step {})",
+                s.t, k));
+          }
+          csv.row({s.t, s.gap, s.Q, s.h, s.phi, s.contact_force, p[0], p[1],
+                   double(s.iterations)});
+          t.push_back(s.t);
+          g.push_back(s.gap);
+          Q.push_back(s.Q);
+          p_lips.push_back(p[0]);
+          p_mic.push_back(p[1]);
+          its += s.iterations;
+          unconverged += !s.converged;
+          if (flow_xdmf and k % vp.write_every == 0)
+          {
+            flow_xdmf->write(s.t);
+            sound_xdmf->write(s.t);
+          }
+          progress.update(double(k),
+                          fmt::format("t = {:.5f} g = {:+.3e} Q = {:.3e} "
+                                      "p_mic = {:+.3e}",
+                                      s.t, s.gap, Q.back(), p[1]));
+        }
+        const double loop_wall = std::chrono::duration<double>(
+                                     std::chrono::steady_clock::now() - loop0)
+                                     .count();
+
+        // 5. The fold's cycle and the sound's analysis (limit-cycle window)
+        const double t0 = vp.stats_from * vp.duration;
+        const auto cs = fsai::glottis::cycle_stats(t, g, Q, t0, 0.0);
+        std::vector<double> mic;
+        for (std::size_t i = 0; i < t.size(); ++i)
+          if (t[i] >= t0)
+            mic.push_back(p_mic[i]);
+        // f0 search down to 60 Hz, or to two periods in a short window
+        const double f0 = ac::fundamental_frequency(
+            mic, vp.dt, std::max(60.0, 2.6 / (vp.dt * double(mic.size()))));
+        const std::vector<double> formants = ac::lpc_formants(mic, vp.dt);
+        const double spl = ac::spl_db(mic);
+        std::vector<double> formant_err;
+        for (std::size_t k = 0; k < 2 and k < formants.size()
+                                and k < tract_formants.size();
+             ++k)
+        {
+          formant_err.push_back(100.0 * (formants[k] - tract_formants[k])
+                                / tract_formants[k]);
+        }
+        fsai::log::info(
+            "fold: {} cycles, f0 {:.2f} Hz, open quotient {:.3f}, peak flow "
+            "{:.3e} m³/s, closes every cycle: {}; sound at the microphone: "
+            "f0 {:.2f} Hz ({:+.2f} %), SPL {:.1f} dB, LPC formants {::.0f} "
+            "Hz vs tract {::.0f} Hz",
+            cs.cycles, cs.f0_hz, cs.open_quotient, cs.q_peak,
+            cs.closes_every_cycle ? "yes" : "no", f0,
+            100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, formants, tract_formants);
+
+        // Spectrum of the sound (Hann window) for the chart
+        {
+          std::vector<double> w(mic.size());
+          for (std::size_t i = 0; i < mic.size(); ++i)
+          {
+            w[i] = mic[i]
+                   * (0.5 - 0.5 * std::cos(2 * M_PI * i / double(mic.size())));
+          }
+          const auto [f, A] = ac::amplitude_spectrum(w, vp.dt, 4);
+          fsai::io::CsvWriter sc(rt.comm(), vp.output + "/spectrum.csv",
+                                 {"f_hz", "level_db"});
+          for (std::size_t i = 1; i < f.size() and f[i] <= 5000.0; ++i)
+            sc.row({f[i], 20 * std::log10(std::max(A[i], 1e-30) / 20e-6)});
+        }
+        const std::string wav = vp.output + "/sound.wav";
+        if (rt.rank() == 0)
+          ac::write_wav(wav, ac::resample_linear(p_mic, vp.dt, vp.wav_rate),
+                        vp.wav_rate);
+
+        summary.set("f0_hz", f0);
+        summary.set("f0_fold_hz", cs.f0_hz);
+        summary.set("formants_from_sound_hz", formants);
+        summary.set("formant_errors_percent", formant_err);
+        summary.set("spl_db", spl);
+        summary.set("sim_time_s", vp.duration);
+        summary.set("wav", wav);
+        summary.set("open_quotient", cs.open_quotient);
+        summary.set("q_peak_m3s", cs.q_peak);
+        summary.set("cycles", cs.cycles);
+        summary.set("closes_every_cycle", cs.closes_every_cycle);
+        summary.set("steps", n);
+        summary.set("coupling_iterations_mean", double(its) / double(n));
+        summary.set("coupling_unconverged_steps", unconverged);
+        summary.set("loop_wall_s", loop_wall);
+        summary.set("wall_per_sim_s", loop_wall / vp.duration);
+        summary.write(vp.output + "/summary.json");
+        fsai::log::info("time loop {:.1f} s ({:.3g} s per simulated s); "
+                        "total {:.1f} s; wrote {}",
+                        loop_wall, loop_wall / vp.duration,
+                        std::chrono::duration<double>(
+                            std::chrono::steady_clock::now() - wall0)
+                            .count(),
+                        wav);
+
+        if (vp.check_result)
+        {
+          auto fail = [](const std::string& what)
+          { throw std::runtime_error("check failed: " + what); };
+          if (!(std::isfinite(spl) and spl > 40.0))
+            fail(fmt::format("sound level {} dB (want finite, > 40 dB)", spl));
+          if (!(cs.f0_hz >= 85.0 and cs.f0_hz <= 155.0))
+            fail(fmt::format("fold f0 {} Hz outside 85-155 Hz", cs.f0_hz));
+          if (vp.check_f0_tolerance > 0
+              and !(std::abs(f0 - cs.f0_hz) <= vp.check_f0_tolerance * cs.f0_hz))
+          {
+            fail(fmt::format("sound f0 {} Hz vs fold f0 {} Hz (tolerance {} "
+                             "%)",
+                             f0, cs.f0_hz, 100 * vp.check_f0_tolerance));
+          }
+        }
+
+        // 6. Chart (optional: a missing matplotlib only warns)
+        if (rt.rank() == 0)
+        {
+          const std::string cmd = std::string(FSAI_PYTHON) + " "
+                                  + FSAI_SCRIPTS_DIR + "/plot_voice.py "
+                                  + vp.output + " > /dev/null 2>&1";
+          if (std::system(cmd.c_str()) != 0)
+            fsai::log::warn("could not draw voice.png ({})", cmd);
+        }
+      });
+}

@@ -1,0 +1,200 @@
+// Copyright (C) 2026 fsai developers
+#include "sound.h"
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <common/errors.h>
+#include <complex>
+#include <numeric>
+#include <sndfile.h>
+
+namespace
+{
+std::vector<double> demeaned(const std::vector<double>& x)
+{
+  const double m
+      = x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / x.size();
+  std::vector<double> y(x.size());
+  std::transform(x.begin(), x.end(), y.begin(),
+                 [m](double v) { return v - m; });
+  return y;
+}
+} // namespace
+
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::acoustics::resample_linear(const std::vector<double>& x,
+                                                     double dt, double rate)
+{
+  fsai::require_positive("sampling interval", dt);
+  fsai::require_positive("sample rate", rate);
+  if (x.size() < 2)
+    return x;
+  const double T = dt * double(x.size() - 1);
+  const std::size_t n = std::size_t(std::floor(T * rate)) + 1;
+  std::vector<double> y(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double s = i / rate / dt;
+    const std::size_t k = std::min(std::size_t(s), x.size() - 2);
+    const double w = s - double(k);
+    y[i] = (1 - w) * x[k] + w * x[k + 1];
+  }
+  return y;
+}
+//-----------------------------------------------------------------------------
+double fsai::acoustics::write_wav(const std::string& path,
+                                  const std::vector<double>& x, int rate,
+                                  double peak)
+{
+  std::vector<double> y = demeaned(x);
+  const std::size_t fade = std::min(y.size() / 2, std::size_t(0.01 * rate));
+  for (std::size_t i = 0; i < fade; ++i)
+  {
+    const double w = 0.5 * (1 - std::cos(M_PI * i / fade));
+    y[i] *= w;
+    y[y.size() - 1 - i] *= w;
+  }
+  double m = 0;
+  for (double v : y)
+    m = std::max(m, std::abs(v));
+  const double scale = m > 0 ? peak / m : 0.0;
+  std::vector<short> pcm(y.size());
+  for (std::size_t i = 0; i < y.size(); ++i)
+    pcm[i] = short(std::lround(32767.0 * std::clamp(scale * y[i], -1.0, 1.0)));
+  SF_INFO info{};
+  info.samplerate = rate;
+  info.channels = 1;
+  info.format = SF_FORMAT_WAV | SF_FORMAT_PCM_16;
+  SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
+  if (!f)
+    throw fsai::InputError("cannot write '" + path + "': " + sf_strerror(nullptr));
+  const sf_count_t written = sf_write_short(f, pcm.data(), sf_count_t(pcm.size()));
+  const int err = sf_close(f);
+  if (written != sf_count_t(pcm.size()) or err != 0)
+    throw fsai::InputError("writing '" + path + "' failed (disk full?)");
+  return scale;
+}
+//-----------------------------------------------------------------------------
+double fsai::acoustics::fundamental_frequency(const std::vector<double>& x,
+                                              double dt, double f_min,
+                                              double f_max)
+{
+  // Low-pass first (two passes of a boxcar of 1/(2 f_max): zeros at
+  // 2 f_max and its multiples), so that tract resonances and broadband
+  // flow noise do not pull the autocorrelation peak
+  std::vector<double> y = demeaned(x);
+  const std::size_t m = std::max<std::size_t>(1, std::lround(0.5 / (f_max * dt)));
+  for (int pass = 0; pass < 2 and y.size() > m; ++pass)
+  {
+    std::vector<double> z(y.size() - m + 1);
+    double acc = std::accumulate(y.begin(), y.begin() + m, 0.0);
+    for (std::size_t i = 0; i < z.size(); ++i)
+    {
+      z[i] = acc / double(m);
+      if (i + m < y.size())
+        acc += y[i + m] - y[i];
+    }
+    y = std::move(z);
+  }
+  const std::size_t l0 = std::size_t(std::floor(1.0 / (f_max * dt)));
+  const std::size_t l1 = std::size_t(std::ceil(1.0 / (f_min * dt)));
+  if (y.size() < 2 * l1 + 2)
+    return NAN;
+  const double r0 = std::inner_product(y.begin(), y.end(), y.begin(), 0.0);
+  if (!(r0 > 0))
+    return NAN;
+  std::vector<double> r(l1 + 2, 0.0);
+  for (std::size_t l = std::max<std::size_t>(1, l0 - 1); l <= l1 + 1; ++l)
+  {
+    double s = 0;
+    for (std::size_t i = 0; i + l < y.size(); ++i)
+      s += y[i] * y[i + l];
+    // unbiased: the overlap shrinks with the lag
+    r[l] = s / double(y.size() - l);
+  }
+  double rmax = -1e300;
+  for (std::size_t l = l0; l <= l1; ++l)
+    rmax = std::max(rmax, r[l]);
+  if (!(rmax > 0))
+    return NAN;
+  for (std::size_t l = std::max<std::size_t>(l0, 2); l <= l1; ++l)
+  {
+    if (r[l] >= 0.9 * rmax and r[l] >= r[l - 1] and r[l] >= r[l + 1])
+    {
+      const double a = r[l - 1], b = r[l], c = r[l + 1];
+      const double den = a - 2 * b + c;
+      const double d = den != 0 ? 0.5 * (a - c) / den : 0.0;
+      return 1.0 / ((double(l) + d) * dt);
+    }
+  }
+  return NAN;
+}
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::acoustics::lpc_formants(const std::vector<double>& x,
+                                                  double dt, double f_max,
+                                                  int order,
+                                                  double max_bandwidth)
+{
+  const double fs = 2 * f_max;
+  std::vector<double> y = resample_linear(demeaned(x), dt, fs);
+  if (int(y.size()) < 4 * order)
+    return {};
+  for (std::size_t i = y.size(); i-- > 1;)
+    y[i] -= 0.97 * y[i - 1];
+  const std::size_t n = y.size();
+  for (std::size_t i = 0; i < n; ++i)
+    y[i] *= 0.54 - 0.46 * std::cos(2 * M_PI * i / double(n - 1));
+  std::vector<double> r(order + 1, 0.0);
+  for (int l = 0; l <= order; ++l)
+    for (std::size_t i = 0; i + l < n; ++i)
+      r[l] += y[i] * y[i + l];
+  if (!(r[0] > 0))
+    return {};
+  // Levinson–Durbin: a[0] = 1, prediction error e
+  std::vector<double> a(order + 1, 0.0), tmp;
+  a[0] = 1;
+  double e = r[0];
+  for (int k = 1; k <= order; ++k)
+  {
+    double acc = r[k];
+    for (int j = 1; j < k; ++j)
+      acc += a[j] * r[k - j];
+    const double kk = -acc / e;
+    tmp = a;
+    for (int j = 1; j < k; ++j)
+      a[j] = tmp[j] + kk * tmp[k - j];
+    a[k] = kk;
+    e *= 1 - kk * kk;
+    if (!(e > 0))
+      return {};
+  }
+  // Roots of z^p + a1 z^(p-1) + ... + ap: companion matrix eigenvalues
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(order, order);
+  for (int j = 0; j < order; ++j)
+    C(0, j) = -a[j + 1];
+  for (int i = 1; i < order; ++i)
+    C(i, i - 1) = 1.0;
+  const Eigen::VectorXcd z = C.eigenvalues();
+  std::vector<double> f;
+  for (int i = 0; i < order; ++i)
+  {
+    if (z[i].imag() <= 0)
+      continue;
+    const double fi = std::arg(z[i]) * fs / (2 * M_PI);
+    const double bi = -std::log(std::abs(z[i])) * fs / M_PI;
+    if (fi > 90.0 and bi < max_bandwidth and fi < f_max - 100.0)
+      f.push_back(fi);
+  }
+  std::sort(f.begin(), f.end());
+  return f;
+}
+//-----------------------------------------------------------------------------
+double fsai::acoustics::spl_db(const std::vector<double>& x)
+{
+  const std::vector<double> y = demeaned(x);
+  if (y.empty())
+    return NAN;
+  const double ms
+      = std::inner_product(y.begin(), y.end(), y.begin(), 0.0) / y.size();
+  return 10 * std::log10(ms / (20e-6 * 20e-6));
+}

@@ -1,0 +1,45 @@
+// Copyright (C) 2026 fsai developers
+//
+// Analysis and output of a computed sound signal (the microphone pressure
+// of the voice scene): resampling, 16-bit WAV (libsndfile), fundamental
+// frequency by autocorrelation, formants by linear prediction, SPL.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace fsai::acoustics
+{
+/// x sampled every dt, read at `rate` Hz by linear interpolation (the
+/// acoustic signals here are sampled at ≥ 50 kHz and carry < 5 kHz, so
+/// linear interpolation to 44.1 kHz changes them by < 1 %)
+std::vector<double> resample_linear(const std::vector<double>& x, double dt,
+                                    double rate);
+
+/// Write x as a mono 16-bit PCM WAV at `rate` Hz, mean removed, scaled so
+/// the peak is `peak` of full scale, 10 ms fade-in and -out (no clicks).
+/// Returns the scale factor applied [1/Pa]. InputError when the file cannot
+/// be written.
+double write_wav(const std::string& path, const std::vector<double>& x,
+                 int rate, double peak = 0.9);
+
+/// Fundamental frequency [Hz] of x (sampled every dt) from the
+/// autocorrelation of x low-passed by two boxcars of length 1/(2 f_max):
+/// the first maximum within 90 % of the largest one for
+/// periods in [1/f_max, 1/f_min] (so a period, not a multiple of it),
+/// refined by a parabola; NaN if x is silent
+double fundamental_frequency(const std::vector<double>& x, double dt,
+                             double f_min = 60.0, double f_max = 400.0);
+
+/// Formants of a voiced signal by linear prediction (autocorrelation
+/// method): resampled to 2 f_max, pre-emphasis 1 − 0.97 z⁻¹, Hamming
+/// window, predictor of `order` by Levinson–Durbin, roots of the predictor
+/// polynomial (eigenvalues of its companion matrix); formants are the root
+/// angles with bandwidth < `max_bandwidth` Hz and frequency > 90 Hz, in
+/// ascending order.
+std::vector<double> lpc_formants(const std::vector<double>& x, double dt,
+                                 double f_max = 5000.0, int order = 12,
+                                 double max_bandwidth = 500.0);
+
+/// Sound pressure level 20 log10(p_rms / 20 µPa) of x (mean removed)
+double spl_db(const std::vector<double>& x);
+} // namespace fsai::acoustics

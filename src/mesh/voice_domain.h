@@ -1,0 +1,55 @@
+// Copyright (C) 2026 fsai developers
+#pragma once
+#include "MeshData.h"
+#include "area_function.h"
+#include <mpi.h>
+#include <string>
+
+namespace fsai::common
+{
+class Parameters;
+}
+namespace fsai::glottis
+{
+class FoldProfile;
+}
+
+namespace fsai::mesh
+{
+/// Geometry of the acoustic domain of the voice scene ([voice] section,
+/// shared/DESIGN.md §2 "Acoustics", paper §2.4): the fixed flow domain
+/// Ω^f_0 of the glottis scene (subglottal duct, the fold at rest, the
+/// supraglottal channel) continued by the vocal tract of a vowel to the
+/// lips and a half-disc radiation region beyond them, all as the symmetric
+/// half y ≥ 0 of a planar model of depth L_g.
+struct VoiceDomainGeometry
+{
+  double radius = 0.05;       ///< radiation region around the lips [m]
+  double layer = 0.0;         ///< absorbing layer beyond `radius` [m] (0: none)
+  double h = 0.004;           ///< acoustic mesh size away from walls [m]
+  double h_fold = 0.1e-3;     ///< size on the fold surface [m]
+  double growth = 0.3;        ///< size growth with the distance to the fold
+  double cells_across = 2.0;  ///< minimum cells across a tract half-width
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+};
+
+/// The vocal tract the acoustic domain contains, as one area function from
+/// the fold's superior attachment x = T (tract coordinate 0) to the lips:
+/// the flow domain's supraglottal channel (half-width H, area 2 H L_g) over
+/// its length, then the vowel's area function from that distance on (its
+/// first part is replaced by the channel). This is the tract whose 1D
+/// transfer-function formants the sound is compared with.
+AreaFunction voice_tract(const AreaFunction& vowel,
+                         const glottis::FoldProfile& profile);
+
+/// Mesh of the acoustic domain (tract from voice_tract). x as in
+/// glottis_channel (fold from 0 to T, inlet at −inlet_length), lips at
+/// x = T + tract length. Facet groups "inlet" (subglottal end), "axis",
+/// "wall" (channel and tract walls, the step between them and the baffle at
+/// the lips plane), "fold", "radiation" (outer arc); cell groups "air" and
+/// "layer". Size h_fold on the fold growing with the distance, at most
+/// h, and at most half-width / cells_across inside the tract.
+MeshData voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
+                      const AreaFunction& tract, const VoiceDomainGeometry& g);
+} // namespace fsai::mesh

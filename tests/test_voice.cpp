@@ -1,0 +1,151 @@
+// Copyright (C) 2026 fsai developers
+// The voice scene's pieces: flow → acoustic mesh transfer of the Lighthill
+// velocity (non-matching meshes, any partition), fundamental frequency and
+// LPC formants of synthetic signals with known answers, the WAV writer.
+#include "catch.h"
+#include <acoustics/FlowSource.h>
+#include <acoustics/WaveSolver.h>
+#include <acoustics/sound.h>
+#include <cmath>
+#include <common/errors.h>
+#include <dolfinx/mesh/generation.h>
+#include <sndfile.h>
+
+namespace
+{
+std::shared_ptr<dolfinx::mesh::Mesh> rectangle(double L, std::size_t nx,
+                                               std::size_t ny,
+                                               dolfinx::mesh::DiagonalType d)
+{
+  using namespace dolfinx::mesh;
+  return std::make_shared<Mesh>(create_rectangle(
+      MPI_COMM_WORLD, {{{0.0, 0.0}, {L, 1.0}}}, {nx, ny}, CellType::triangle,
+      GhostMode::shared_facet, d));
+}
+
+/// An all-pole "vowel": impulse train at f0 through resonators (F, B)
+std::vector<double> synthetic_vowel(double f0, std::vector<double> F,
+                                    std::vector<double> B, double fs, double T)
+{
+  const std::size_t n = std::size_t(T * fs);
+  std::vector<double> x(n, 0.0);
+  for (double t = 0; t < T; t += 1.0 / f0)
+    x[std::min(n - 1, std::size_t(std::lround(t * fs)))] = 1.0;
+  for (std::size_t k = 0; k < F.size(); ++k)
+  {
+    const double r = std::exp(-M_PI * B[k] / fs);
+    const double a1 = 2 * r * std::cos(2 * M_PI * F[k] / fs), a2 = -r * r;
+    std::vector<double> y(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+      y[i] = x[i] + (i > 0 ? a1 * y[i - 1] : 0) + (i > 1 ? a2 * y[i - 2] : 0);
+    x = y;
+  }
+  return x;
+}
+} // namespace
+
+TEST_CASE("Flow velocity reaches a non-matching acoustic mesh exactly for "
+          "linear fields, zero outside the flow domain",
+          "[voice][mpi]")
+{
+  namespace ac = fsai::acoustics;
+  using dolfinx::mesh::DiagonalType;
+  ac::WaveParameters wave;
+  // "Flow" mesh: the unit square; acoustic mesh: [0, 2] x [0, 1], other
+  // cells and diagonals
+  ac::WaveSolver flow(rectangle(1.0, 7, 5, DiagonalType::left), 1, false,
+                      wave, {}, 1e-4, nullptr, true);
+  ac::WaveSolver sound(rectangle(2.0, 26, 11, DiagonalType::right), 1, false,
+                       wave, {}, 1e-4, nullptr, true);
+  auto& vf = flow.flow_velocity();
+  const auto Vf = vf.function_space();
+  const auto Xf = Vf->tabulate_dof_coordinates(false);
+  auto lin = [](double x, double y, int c)
+  { return c == 0 ? 1.0 + 2.0 * x - 3.0 * y : -0.5 + x + 4.0 * y; };
+  {
+    auto v = vf.x()->mutable_array();
+    for (std::size_t b = 0; b < v.size() / 2; ++b)
+      for (int c = 0; c < 2; ++c)
+        v[2 * b + c] = lin(Xf[3 * b], Xf[3 * b + 1], c);
+  }
+  ac::FlowSource source(MPI_COMM_WORLD, *Vf, Xf,
+                        *sound.flow_velocity().function_space());
+  source.transfer(vf, sound.flow_velocity());
+  const auto Xa = sound.flow_velocity().function_space()
+                      ->tabulate_dof_coordinates(false);
+  const auto va = sound.flow_velocity().x()->array();
+  double err_in = 0, max_out = 0;
+  int inside = 0;
+  for (std::size_t b = 0; b < va.size() / 2; ++b)
+  {
+    const double x = Xa[3 * b], y = Xa[3 * b + 1];
+    for (int c = 0; c < 2; ++c)
+    {
+      if (x <= 1.0 + 1e-12)
+        err_in = std::max(err_in, std::abs(va[2 * b + c] - lin(x, y, c)));
+      else if (x > 1.01) // beyond the tolerance band next to the flow edge
+        max_out = std::max(max_out, std::abs(va[2 * b + c]));
+    }
+    inside += x <= 1.0 + 1e-12;
+  }
+  CHECK(inside > 0);
+  CHECK(err_in < 1e-12);
+  CHECK(max_out == 0.0);
+}
+
+TEST_CASE("Fundamental frequency and LPC formants of a synthetic vowel",
+          "[voice]")
+{
+  namespace ac = fsai::acoustics;
+  const double fs = 50000, f0 = 123.4;
+  const auto x
+      = synthetic_vowel(f0, {600, 1400, 2500}, {80, 100, 150}, fs, 0.08);
+  const double f = ac::fundamental_frequency(x, 1 / fs);
+  CHECK(std::abs(f - f0) / f0 < 2e-3);
+  const auto F = ac::lpc_formants(x, 1 / fs);
+  REQUIRE(F.size() >= 3);
+  CHECK(std::abs(F[0] - 600) / 600 < 0.03);
+  CHECK(std::abs(F[1] - 1400) / 1400 < 0.03);
+  CHECK(std::abs(F[2] - 2500) / 2500 < 0.03);
+  // Silence: no pitch, no formants, no crash
+  std::vector<double> zero(4000, 0.0);
+  CHECK(std::isnan(ac::fundamental_frequency(zero, 1 / fs)));
+  CHECK(ac::lpc_formants(zero, 1 / fs).empty());
+  // 1 Pa rms is 94 dB
+  std::vector<double> sine(50000);
+  for (std::size_t i = 0; i < sine.size(); ++i)
+    sine[i] = std::sqrt(2.0) * std::sin(2 * M_PI * 1000 * i / fs);
+  CHECK(ac::spl_db(sine) == Approx(93.98).margin(0.01));
+}
+
+TEST_CASE("WAV: 16-bit mono at 44.1 kHz, readable; disk full is an error",
+          "[voice]")
+{
+  namespace ac = fsai::acoustics;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank != 0)
+    return;
+  std::vector<double> x(5000);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = 3.0 + std::sin(2 * M_PI * 200 * i * 2e-5); // 0.1 s at 50 kHz
+  const auto y = ac::resample_linear(x, 2e-5, 44100);
+  CHECK(y.size() == 4410);
+  const std::string path = "test_voice.wav";
+  ac::write_wav(path, y, 44100);
+  SF_INFO info{};
+  SNDFILE* f = sf_open(path.c_str(), SFM_READ, &info);
+  REQUIRE(f != nullptr);
+  CHECK(info.samplerate == 44100);
+  CHECK(info.channels == 1);
+  CHECK(info.frames == 4410);
+  CHECK((info.format & SF_FORMAT_SUBMASK) == SF_FORMAT_PCM_16);
+  std::vector<short> s(info.frames);
+  sf_read_short(f, s.data(), info.frames);
+  sf_close(f);
+  int peak = 0;
+  for (short v : s)
+    peak = std::max(peak, std::abs(int(v)));
+  CHECK(peak == Approx(0.9 * 32767).epsilon(0.01)); // mean removed, scaled
+  CHECK_THROWS_AS(ac::write_wav("/dev/full", y, 44100), fsai::InputError);
+}
