@@ -18,9 +18,9 @@ std::shared_ptr<dolfinx::mesh::Mesh> rectangle(double L, std::size_t nx,
                                                dolfinx::mesh::DiagonalType d)
 {
   using namespace dolfinx::mesh;
-  return std::make_shared<Mesh>(create_rectangle(
-      MPI_COMM_WORLD, {{{0.0, 0.0}, {L, 1.0}}}, {nx, ny}, CellType::triangle,
-      GhostMode::shared_facet, d));
+  return std::make_shared<Mesh>(
+      create_rectangle(MPI_COMM_WORLD, {{{0.0, 0.0}, {L, 1.0}}}, {nx, ny},
+                       CellType::triangle, GhostMode::shared_facet, d));
 }
 
 /// An all-pole "vowel": impulse train at f0 through resonators (F, B)
@@ -53,8 +53,8 @@ TEST_CASE("Flow velocity reaches a non-matching acoustic mesh exactly for "
   ac::WaveParameters wave;
   // "Flow" mesh: the unit square; acoustic mesh: [0, 2] x [0, 1], other
   // cells and diagonals
-  ac::WaveSolver flow(rectangle(1.0, 7, 5, DiagonalType::left), 1, false,
-                      wave, {}, 1e-4, nullptr, true);
+  ac::WaveSolver flow(rectangle(1.0, 7, 5, DiagonalType::left), 1, false, wave,
+                      {}, 1e-4, nullptr, true);
   ac::WaveSolver sound(rectangle(2.0, 26, 11, DiagonalType::right), 1, false,
                        wave, {}, 1e-4, nullptr, true);
   auto& vf = flow.flow_velocity();
@@ -71,8 +71,8 @@ TEST_CASE("Flow velocity reaches a non-matching acoustic mesh exactly for "
   ac::FlowSource source(MPI_COMM_WORLD, *Vf, Xf,
                         *sound.flow_velocity().function_space());
   source.transfer(vf, sound.flow_velocity());
-  const auto Xa = sound.flow_velocity().function_space()
-                      ->tabulate_dof_coordinates(false);
+  const auto Xa
+      = sound.flow_velocity().function_space()->tabulate_dof_coordinates(false);
   const auto va = sound.flow_velocity().x()->array();
   double err_in = 0, max_out = 0;
   int inside = 0;

@@ -68,13 +68,13 @@ struct VoiceParameters
   double dt = 2e-5;          // [s]
   bool quick = false;
   std::string radiation = "sommerfeld";
-  double layer = 0.02;       // [m]
+  double layer = 0.02; // [m]
   bool taper = true;
-  bool lighthill = true;  // Lighthill's source on
-  bool wall = true;       // vibrating fold surface on
+  bool lighthill = true;      // Lighthill's source on
+  bool wall = true;           // vibrating fold surface on
   bool source_average = true; // Lighthill velocity at the step midpoint
-  double taper_start = 0.02; // ramp from here before the flow outlet [m]
-  double taper_end = 0.005;  // to zero here before the outlet [m]
+  double taper_start = 0.02;  // ramp from here before the flow outlet [m]
+  double taper_end = 0.005;   // to zero here before the outlet [m]
   double taper_inlet = 0.005; // ramp up over this length after the inlet [m]
   double mic_distance = 0.03; // [m] beyond the lips, on the axis
   double stats_from = 0.5;
@@ -129,7 +129,8 @@ struct VoiceParameters
           "f0 matches the fold's within --check.f0_tolerance and the fold "
           "f0 is in the male range 85-155 Hz");
     p.add("check.f0_tolerance", check_f0_tolerance,
-          "relative tolerance of --check-result on the sound's f0 (0: not checked)");
+          "relative tolerance of --check-result on the sound's f0 (0: not "
+          "checked)");
   }
   void validate() const
   {
@@ -235,13 +236,12 @@ int main(int argc, char* argv[])
                   ? "tube"
                   : (vp.area_function.empty() ? vp.vowel : vp.area_function);
         const fsai::mesh::AreaFunction vowel
-            = vp.tract == "tube"
-                  ? fsai::mesh::uniform_tube(geo.outlet_length + vp.tube_length,
-                                             vp.tube_area)
-                  : fsai::mesh::read_area_function(
-                      vp.area_function.empty()
-                          ? fsai::mesh::vowel_file(vp.vowel)
-                          : vp.area_function);
+            = vp.tract == "tube" ? fsai::mesh::uniform_tube(
+                  geo.outlet_length + vp.tube_length, vp.tube_area)
+                                 : fsai::mesh::read_area_function(
+                                     vp.area_function.empty()
+                                         ? fsai::mesh::vowel_file(vp.vowel)
+                                         : vp.area_function);
         const fsai::mesh::AreaFunction tract
             = fsai::mesh::voice_tract(vowel, profile);
         std::vector<double> tract_formants;
@@ -259,8 +259,7 @@ int main(int argc, char* argv[])
         // 3. Flow (the glottis scene) and sound on their own meshes
         auto fem = std::make_unique<fsai::glottis::FlowGlottis>(
             rt.comm(), profile, vf, setup.contact, fe, setup.fluid, setup.ale,
-            setup.coupling,
-            vp.output + "/coupling.csv");
+            setup.coupling, vp.output + "/coupling.csv");
         fsai::mesh::MeshData am = [&]
         {
           fsai::common::ScopedTimer t("demo: acoustic mesh");
@@ -317,7 +316,8 @@ int main(int argc, char* argv[])
             fold_X.push_back({X[3 * d], X[3 * d + 1]});
         }
         fsai::io::PointProbes probes(
-            am.mesh, {{x_lips, 0.0, 0.0}, {x_lips + vp.mic_distance, 0.0, 0.0}});
+            am.mesh,
+            {{x_lips, 0.0, 0.0}, {x_lips + vp.mic_distance, 0.0, 0.0}});
 
         std::unique_ptr<fsai::io::TimeSeriesWriter> flow_xdmf, sound_xdmf;
         if (vp.write_every > 0)
@@ -388,7 +388,8 @@ int main(int argc, char* argv[])
               const auto d = m.derivatives(fold_X[i]);
               const double w = profile.weight(fold_X[i]);
               for (int c = 0; c < 2; ++c)
-                a[2 * fold_dofs[i] + c] = w * (d[0][c] * qdd[0] + d[1][c] * qdd[1]);
+                a[2 * fold_dofs[i] + c]
+                    = w * (d[0][c] * qdd[0] + d[1][c] * qdd[1]);
             }
             sound.step();
           }
@@ -435,9 +436,8 @@ int main(int argc, char* argv[])
         const std::vector<double> formants = ac::lpc_formants(mic, vp.dt);
         const double spl = ac::spl_db(mic);
         std::vector<double> formant_err;
-        for (std::size_t k = 0; k < 2 and k < formants.size()
-                                and k < tract_formants.size();
-             ++k)
+        for (std::size_t k = 0;
+             k < 2 and k < formants.size() and k < tract_formants.size(); ++k)
         {
           formant_err.push_back(100.0 * (formants[k] - tract_formants[k])
                                 / tract_formants[k]);
@@ -504,7 +504,8 @@ int main(int argc, char* argv[])
           if (!(cs.f0_hz >= 85.0 and cs.f0_hz <= 155.0))
             fail(fmt::format("fold f0 {} Hz outside 85-155 Hz", cs.f0_hz));
           if (vp.check_f0_tolerance > 0
-              and !(std::abs(f0 - cs.f0_hz) <= vp.check_f0_tolerance * cs.f0_hz))
+              and !(std::abs(f0 - cs.f0_hz)
+                    <= vp.check_f0_tolerance * cs.f0_hz))
           {
             fail(fmt::format("sound f0 {} Hz vs fold f0 {} Hz (tolerance {} "
                              "%)",

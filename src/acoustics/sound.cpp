@@ -22,8 +22,9 @@ std::vector<double> demeaned(const std::vector<double>& x)
 } // namespace
 
 //-----------------------------------------------------------------------------
-std::vector<double> fsai::acoustics::resample_linear(const std::vector<double>& x,
-                                                     double dt, double rate)
+std::vector<double>
+fsai::acoustics::resample_linear(const std::vector<double>& x, double dt,
+                                 double rate)
 {
   fsai::require_positive("sampling interval", dt);
   fsai::require_positive("sample rate", rate);
@@ -67,8 +68,10 @@ double fsai::acoustics::write_wav(const std::string& path,
   info.format = SF_FORMAT_WAV | SF_FORMAT_PCM_16;
   SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
   if (!f)
-    throw fsai::InputError("cannot write '" + path + "': " + sf_strerror(nullptr));
-  const sf_count_t written = sf_write_short(f, pcm.data(), sf_count_t(pcm.size()));
+    throw fsai::InputError("cannot write '" + path
+                           + "': " + sf_strerror(nullptr));
+  const sf_count_t written
+      = sf_write_short(f, pcm.data(), sf_count_t(pcm.size()));
   const int err = sf_close(f);
   if (written != sf_count_t(pcm.size()) or err != 0)
     throw fsai::InputError("writing '" + path + "' failed (disk full?)");
@@ -83,7 +86,8 @@ double fsai::acoustics::fundamental_frequency(const std::vector<double>& x,
   // 2 f_max and its multiples), so that tract resonances and broadband
   // flow noise do not pull the autocorrelation peak
   std::vector<double> y = demeaned(x);
-  const std::size_t m = std::max<std::size_t>(1, std::lround(0.5 / (f_max * dt)));
+  const std::size_t m
+      = std::max<std::size_t>(1, std::lround(0.5 / (f_max * dt)));
   for (int pass = 0; pass < 2 and y.size() > m; ++pass)
   {
     std::vector<double> z(y.size() - m + 1);

@@ -39,10 +39,11 @@ fsai::mesh::voice_tract(const AreaFunction& vowel,
   fsai::require(vowel.length() > Lc + 0.01, "area function length",
                 "> the supraglottal channel + 1 cm", vowel.length());
   AreaFunction t;
-  t.source = vowel.source + fmt::format(
-                 " with its first {:.1f} mm replaced by the flow domain's "
-                 "channel ({:.2f} cm^2)",
-                 1e3 * Lc, 1e4 * A_ch);
+  t.source
+      = vowel.source
+        + fmt::format(" with its first {:.1f} mm replaced by the flow domain's "
+                      "channel ({:.2f} cm^2)",
+                      1e3 * Lc, 1e4 * A_ch);
   // The channel as 1 mm sections, so the smooth reading (linear between
   // section centres) stays A_ch up to 0.5 mm before its end
   const int n = std::max(1, int(std::round(Lc / 1e-3)));
@@ -70,11 +71,10 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
   vg.validate();
   const auto& g = profile.geometry();
   const double H = g.half_height, T = g.fold_length, x0 = -g.inlet_length,
-               x1 = T + g.outlet_length, xL = T + tract.length(),
-               R = vg.radius, Rl = R + vg.layer;
+               x1 = T + g.outlet_length, xL = T + tract.length(), R = vg.radius,
+               Rl = R + vg.layer;
   // Planar half-width of the tract at tract coordinate s
-  auto r = [&](double s)
-  { return 0.5 * tract.area_at(s, true) / g.depth; };
+  auto r = [&](double s) { return 0.5 * tract.area_at(s, true) / g.depth; };
   const double r_lips = r(tract.length());
   fsai::require(R > 1.5 * r_lips, "--voice.radius",
                 "larger than the mouth half-width", R);

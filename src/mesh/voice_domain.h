@@ -24,12 +24,12 @@ namespace fsai::mesh
 /// half y ≥ 0 of a planar model of depth L_g.
 struct VoiceDomainGeometry
 {
-  double radius = 0.05;       ///< radiation region around the lips [m]
-  double layer = 0.0;         ///< absorbing layer beyond `radius` [m] (0: none)
-  double h = 0.004;           ///< acoustic mesh size away from walls [m]
-  double h_fold = 0.1e-3;     ///< size on the fold surface [m]
-  double growth = 0.3;        ///< size growth with the distance to the fold
-  double cells_across = 2.0;  ///< minimum cells across a tract half-width
+  double radius = 0.05;      ///< radiation region around the lips [m]
+  double layer = 0.0;        ///< absorbing layer beyond `radius` [m] (0: none)
+  double h = 0.004;          ///< acoustic mesh size away from walls [m]
+  double h_fold = 0.1e-3;    ///< size on the fold surface [m]
+  double growth = 0.3;       ///< size growth with the distance to the fold
+  double cells_across = 2.0; ///< minimum cells across a tract half-width
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };
