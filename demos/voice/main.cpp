@@ -339,7 +339,7 @@ int main(int argc, char* argv[])
                                  "contact_force_N", "p_lips_pa", "p_mic_pa",
                                  "iterations"});
         const long n = std::lround(vp.duration / vp.dt);
-        std::vector<double> t, g, Q, p_mic, p_lips;
+        std::vector<double> t, g, Q, p_mic;
         long its = 0;
         int unconverged = 0;
         fsai::io::Progress progress("step", double(n), 5.0);
@@ -405,7 +405,6 @@ int main(int argc, char* argv[])
           t.push_back(s.t);
           g.push_back(s.gap);
           Q.push_back(s.Q);
-          p_lips.push_back(p[0]);
           p_mic.push_back(p[1]);
           its += s.iterations;
           unconverged += !s.converged;

@@ -161,13 +161,11 @@ fsai::glottis::FlowGlottis::FlowGlottis(
       env.push_back({all[k], all[k + 1]});
     std::sort(env.begin(), env.end());
     env.erase(std::unique(env.begin(), env.end()), env.end());
-    const auto V0 = _flow->velocity_space();
-    const std::vector<double> X0 = V0->tabulate_dof_coordinates(false);
-    const std::int32_t nblocks = V0->dofmap()->index_map->size_local()
-                                 + V0->dofmap()->index_map->num_ghosts();
+    const std::int32_t nblocks = V->dofmap()->index_map->size_local()
+                                 + V->dofmap()->index_map->num_ghosts();
     for (std::int32_t d = 0; d < nblocks and env.size() >= 2; ++d)
     {
-      const double x = X0[3 * d], y = X0[3 * d + 1];
+      const double x = _X_ref[3 * d], y = _X_ref[3 * d + 1];
       auto it = std::upper_bound(env.begin(), env.end(),
                                  std::array<double, 2>{x, 1e300});
       if (it == env.begin() or it == env.end())
