@@ -4,11 +4,14 @@ resolutions of flow mesh, acoustic mesh and time step, and the comparison
 runs of issue 8 on the coarse resolution — vowels a and i, the tract
 replaced by a short straight tube, the Lighthill source without its taper
 (truncated at the flow outlet), and an absorbing layer instead of the
-Sommerfeld condition.
+Sommerfeld condition; and the lossless tract (rigid walls, sound-hard
+subglottal end) where the sound fails.
 
 Errors: f0 of the sound against the fold's f0 of the same run; F1, F2 from
 the sound (LPC) against the transfer-function formants of the same tract
-(1D model); f0 and SPL also against the finest resolution.
+(1D model, closed glottis) and of the acoustic domain as modelled (1D, its
+open rest glottis and subglottal end); f0 and SPL also against the finest
+resolution.
 
 usage: bench/voice.py [BUILD_DIR] [--only NAME,...] [--rerun]
 writes bench/results/voice.csv, voice.png; run folders
@@ -37,6 +40,7 @@ env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 
 coarse = ["--fe.h_far", "1e-3", "--fe.h_gap", "0.1e-3", "--voice.h", "0.008", "--dt", "4e-5"]
 medium = ["--fe.h_far", "0.7e-3", "--fe.h_gap", "0.07e-3", "--voice.h", "0.006", "--dt", "3e-5"]
+rigid = ["--voice.yielding_walls=false", "--voice.subglottal", "hard"]
 runs = {
     "u_coarse": coarse,
     "u_medium": medium,
@@ -46,6 +50,12 @@ runs = {
     "tube_coarse": coarse + ["--tract", "tube"],
     "notaper_coarse": coarse + ["--voice.taper=false"],
     "pml_coarse": coarse + ["--radiation", "pml"],
+    # Where it fails: the lossless tract of stop 15 (rigid walls, sound-hard
+    # subglottal end) at all three resolutions, and the hard end alone
+    "u_coarse_rigid": coarse + rigid,
+    "u_medium_rigid": medium + rigid,
+    "u_default_rigid": rigid,
+    "u_hardend_coarse": coarse + ["--voice.subglottal", "hard"],
 }
 only = [s for s in args.only.split(",") if s]
 rows = []
@@ -60,19 +70,26 @@ for name, extra in runs.items():
     with open(os.path.join(run, "summary.json")) as f:
         s = json.load(f)
     F, Ft = s["formants_from_sound_hz"], s["tract_formants_hz"]
+    Fd = s.get("domain_formants_hz", [float("nan")] * 2)  # not in stop-15 runs
+    Fd = Fd + [float("nan")] * (2 - len(Fd))
     err = [100 * (F[k] - Ft[k]) / Ft[k] if k < len(F) else float("nan") for k in range(2)]
+    derr = [100 * (F[k] - Fd[k]) / Fd[k] if k < len(F) else float("nan") for k in range(2)]
     rows.append(dict(name=name, vowel=s["vowel"], wall_s=s["loop_wall_s"],
                      flow_dofs=s["flow_dofs"], acoustic_dofs=s["acoustic_dofs"],
                      f0_fold=s["f0_fold_hz"], f0_sound=s["f0_hz"],
                      f0_err=100 * (s["f0_hz"] - s["f0_fold_hz"]) / s["f0_fold_hz"],
                      F1=F[0] if F else float("nan"), F2=F[1] if len(F) > 1 else float("nan"),
                      F1_tract=Ft[0], F2_tract=Ft[1], F1_err=err[0], F2_err=err[1],
+                     F1_domain=Fd[0], F2_domain=Fd[1], F1_domain_err=derr[0],
+                     F2_domain_err=derr[1],
                      spl_db=s["spl_db"], cycles=s["cycles"],
                      closes=s["closes_every_cycle"]))
     r = rows[-1]
     print(f"{name:15s} wall {r['wall_s']:7.1f} s  f0 fold {r['f0_fold']:7.2f} sound "
           f"{r['f0_sound']:7.2f} ({r['f0_err']:+.2f} %)  F1 {r['F1']:6.0f}/{r['F1_tract']:6.0f} "
           f"({r['F1_err']:+.1f} %)  F2 {r['F2']:6.0f}/{r['F2_tract']:6.0f} ({r['F2_err']:+.1f} %)"
+          f"  as modelled {r['F1_domain']:6.0f}/{r['F2_domain']:6.0f} "
+          f"({r['F1_domain_err']:+.1f} / {r['F2_domain_err']:+.1f} %)"
           f"  SPL {r['spl_db']:.1f} dB", flush=True)
 
 if rows:
@@ -107,3 +124,50 @@ if len(res) == 3:
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "voice.png"), dpi=120)
+
+# Where it fails: the microphone signal of a variant minus the reference's
+# (same resolution, same flow: the flow is computed identically, only the
+# acoustics differ), over the analysis window t >= 50 ms
+import numpy as np
+
+
+def mic(name):
+    path = os.path.join(out, f"run_voice_{name}", "series.csv")
+    if not os.path.exists(path):
+        return None, None
+    d = np.genfromtxt(path, delimiter=",", names=True)
+    return d["t_s"], d["p_mic_pa"]
+
+
+pairs = [("notaper_coarse", "u_coarse", "source not tapered"),
+         ("pml_coarse", "u_coarse", "absorbing layer instead of Sommerfeld"),
+         ("u_hardend_coarse", "u_coarse", "sound-hard subglottal end")]
+diff_rows = []
+for a, b, what in pairs:
+    ta, pa = mic(a)
+    tb, pb = mic(b)
+    if ta is None or tb is None or len(ta) != len(tb):
+        continue
+    w = ta >= 0.05
+    d = pa[w] - pb[w]
+    rms_d = np.sqrt(np.mean((d - d.mean()) ** 2))
+    rms_b = np.sqrt(np.mean((pb[w] - pb[w].mean()) ** 2))
+    dt = ta[1] - ta[0]
+    D = np.abs(np.fft.rfft((d - d.mean()) * np.hanning(len(d)), 8 * len(d)))
+    f = np.fft.rfftfreq(8 * len(d), dt)
+    band = f > 50
+    f_peak = f[band][np.argmax(D[band])]
+    diff_rows.append(dict(variant=a, reference=b, what=what, rms_diff_pa=rms_d,
+                          rms_ref_pa=rms_b,
+                          level_db_re_20upa=20 * np.log10(rms_d / 20e-6),
+                          level_db_re_signal=20 * np.log10(rms_d / rms_b),
+                          diff_peak_hz=f_peak))
+    r = diff_rows[-1]
+    print(f"{a} - {b} ({what}): rms difference {rms_d:.3g} Pa of {rms_b:.3g} Pa "
+          f"= {r['level_db_re_20upa']:.1f} dB re 20 uPa, {r['level_db_re_signal']:+.1f} dB "
+          f"re signal; difference spectrum peaks at {f_peak:.0f} Hz")
+if diff_rows:
+    with open(os.path.join(out, "voice_differences.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(diff_rows[0]))
+        w.writeheader()
+        w.writerows(diff_rows)

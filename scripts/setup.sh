@@ -28,14 +28,32 @@ for p in "${PACKAGES[@]}"; do
   fi
 done
 
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "setup: all ${#PACKAGES[@]} packages present"
+# Optional: headless ParaView rendering of run folders
+# (scripts/render_paraview.py, test paraview_render). Without them that
+# test is skipped; a failed install only warns.
+OPTIONAL=(paraview python3-paraview xvfb xauth libgl1-mesa-dri)
+missing_opt=()
+for p in "${OPTIONAL[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing_opt+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ] && [ ${#missing_opt[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages (and ${#OPTIONAL[@]} optional) present"
   exit 0
 fi
 
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-echo "setup: installing ${#missing[@]} package(s): ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${#missing[@]} package(s): ${missing[*]}"
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+if [ ${#missing_opt[@]} -gt 0 ]; then
+  echo "setup: installing ${#missing_opt[@]} optional package(s): ${missing_opt[*]}"
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing_opt[@]}" ||
+    echo "setup: warning: optional packages not installed (ParaView rendering test will be skipped)"
+fi

@@ -75,14 +75,15 @@ double mode_error(const fsai::acoustics::WaveSolver& s, double c0, int degree)
 }
 
 /// First n peaks of the pulse response of a tract observed at probe 1
-std::vector<double> pulse_formants(const fsai::mesh::AreaFunction& af,
-                                   fsai::mesh::VocalTractGeometry g,
-                                   const std::string& radiation, int n)
+std::vector<double>
+pulse_formants(const fsai::mesh::AreaFunction& af,
+               fsai::mesh::VocalTractGeometry g, const std::string& radiation,
+               int n, const fsai::acoustics::WaveParameters& wave = {},
+               bool yielding = false)
 {
   namespace ac = fsai::acoustics;
   g.open = radiation != "pressure-release";
   auto m = fsai::mesh::vocal_tract(MPI_COMM_WORLD, af, g);
-  ac::WaveParameters wave;
   ac::PulseParameters pulse;
   pulse.duration = 0.05;
   ac::TractBoundaryModel bm;
@@ -92,6 +93,8 @@ std::vector<double> pulse_formants(const fsai::mesh::AreaFunction& af,
   bm.radiation_radius = g.radius;
   bm.centre = {af.length(), 0, 0};
   bm.spherical = bm.axisymmetric;
+  if (yielding)
+    bm.yielding = m.facet_tags->find(m.facet_tag("wall"));
   const double x_obs = ac::default_observation_point(
       af, g.open ? ac::LipEnd::unflanged : ac::LipEnd::pressure_release);
   auto r = ac::pulse_response(m, wave, pulse, bm, {{0, 0, 0}, {x_obs, 0, 0}});
@@ -184,6 +187,74 @@ TEST_CASE("1D chain-matrix model: closed-open tube resonances", "[acoustics]")
   REQUIRE(r.size() >= 4);
   for (int n = 1; n <= 4; ++n)
     CHECK(r[n - 1].f == Approx((2 * n - 1) * c0 / (4 * L)).epsilon(1e-4));
+}
+
+TEST_CASE("Yielding walls of mass m: f_n^2 = f_n,rigid^2 + f_w^2",
+          "[acoustics][mpi]")
+{
+  // A closed-open tube whose walls are a mass per unit area m (r = k = 0)
+  // has the dispersion relation β² = ω²/c0² − ρ0 P/(m A) (P the wall
+  // perimeter), so each resonance moves to f_n² = ((2n−1) c0/4L)² + f_w²
+  // with the closed-tract wall resonance f_w = (c0/2π) √(ρ0 P/(m A))
+  // (Fant 1960; Sondhi 1974). Planar channel of depth L_g: P = 2 L_g.
+  namespace ac = fsai::acoustics;
+  const double L = 0.175, A = 3e-4, c0 = 343.0, rho0 = 1.2, m = 15.0;
+  fsai::mesh::VocalTractGeometry g;
+  const double fw
+      = c0 / (2 * M_PI) * std::sqrt(rho0 * 2 * g.depth / (m * A)); // 169 Hz
+  auto exact
+      = [&](int n) { return std::hypot((2 * n - 1) * c0 / (4 * L), fw); };
+  ac::TubeWall wall{m, 0.0, 0.0, g.depth};
+  auto r1d = ac::tube_resonances(
+      fsai::mesh::resample(fsai::mesh::uniform_tube(L, A), true, 1e-3), 4000.0,
+      c0, rho0, ac::LipEnd::pressure_release, -1.0, wall);
+  REQUIRE(r1d.size() >= 3);
+  ac::WaveParameters wave;
+  wave.wall_mass = m;
+  wave.wall_resistance = 0.0;
+  wave.wall_stiffness = 0.0;
+  g.h = 0.005;
+  auto fe = pulse_formants(fsai::mesh::uniform_tube(L, A), g,
+                           "pressure-release", 3, wave, true);
+  REQUIRE(fe.size() == 3);
+  for (int n = 1; n <= 3; ++n)
+  {
+    fsai::log::info("Yielding walls f{}: exact {:.2f} Hz (rigid {:.2f}), 1D "
+                    "{:.2f}, FE {:.2f} Hz ({:+.3f} %)",
+                    n, exact(n), (2 * n - 1) * c0 / (4 * L), r1d[n - 1].f,
+                    fe[n - 1], 100 * (fe[n - 1] - exact(n)) / exact(n));
+    CHECK(r1d[n - 1].f == Approx(exact(n)).epsilon(1e-3));
+    CHECK(fe[n - 1] == Approx(exact(n)).epsilon(5e-3));
+  }
+}
+
+TEST_CASE("1D model with a glottal branch: a split tube is one tube",
+          "[acoustics]")
+{
+  // A uniform tube of length L (p' = 0 at the lips) whose glottal end leads
+  // into a branch of the same area and length L_b, rigid at its far end, is
+  // one closed-open tube of length L + L_b with the source at the joint:
+  // its resonances are (2n−1) c0 / 4 (L + L_b) (none is cancelled here:
+  // the branch's quarter-wave zero, c0 / 4 L_b = 1143 Hz, is not one of
+  // them). A wrong sign of the branch impedance moves them all.
+  namespace ac = fsai::acoustics;
+  const double L = 0.1, Lb = 0.075, A = 3e-4, c0 = 343.0;
+  ac::GlottalBranch branch{
+      fsai::mesh::resample(fsai::mesh::uniform_tube(Lb, A), true, 1e-3), false};
+  auto r = ac::tube_resonances(
+      fsai::mesh::resample(fsai::mesh::uniform_tube(L, A), true, 1e-3), 3000.0,
+      c0, 1.2, ac::LipEnd::pressure_release, -1.0, {}, branch);
+  REQUIRE(r.size() >= 3);
+  for (int n = 1; n <= 3; ++n)
+    CHECK(r[n - 1].f
+          == Approx((2 * n - 1) * c0 / (4 * (L + Lb))).epsilon(1e-3));
+  // A vanishing glottal opening is the closed end again
+  ac::GlottalBranch slit{fsai::mesh::uniform_tube(0.004, 1e-12), true};
+  auto closed = ac::tube_resonances(
+      fsai::mesh::resample(fsai::mesh::uniform_tube(L, A), true, 1e-3), 3000.0,
+      c0, 1.2, ac::LipEnd::pressure_release, -1.0, {}, slit);
+  REQUIRE(closed.size() >= 2);
+  CHECK(closed[0].f == Approx(c0 / (4 * L)).epsilon(1e-3));
 }
 
 TEST_CASE("FE closed-open tube: f_n = (2n-1) c / 4L within 0.5%",

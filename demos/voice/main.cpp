@@ -68,6 +68,8 @@ struct VoiceParameters
   double dt = 2e-5;          // [s]
   bool quick = false;
   std::string radiation = "sommerfeld";
+  std::string subglottal = "absorbing";
+  bool yielding_walls = true;
   double layer = 0.02; // [m]
   bool taper = true;
   bool lighthill = true;      // Lighthill's source on
@@ -103,6 +105,12 @@ struct VoiceParameters
                  "radiation boundary: Sommerfeld (with the curvature term) "
                  "or an absorbing layer");
     p.add("layer", layer, "absorbing-layer thickness for --radiation pml [m]");
+    p.add("voice.yielding_walls", yielding_walls,
+          "supraglottal tract walls yield (--acoustics.wall_*; false: "
+          "rigid walls, resonances damped by radiation only)");
+    p.add_choice("voice.subglottal", subglottal, {"absorbing", "hard"},
+                 "subglottal end of the acoustic domain: plane-wave "
+                 "absorbing (anechoic trachea) or sound-hard");
     p.add("voice.taper", taper,
           "taper Lighthill's source to zero before the flow outlet (false: "
           "truncated source, for the failure study)");
@@ -244,17 +252,46 @@ int main(int argc, char* argv[])
                                          : vp.area_function);
         const fsai::mesh::AreaFunction tract
             = fsai::mesh::voice_tract(vowel, profile);
-        std::vector<double> tract_formants;
+        // Same walls as the FE model: the planar model's two walls of
+        // depth L_g per unit length
+        ac::TubeWall wall1d;
+        if (vp.yielding_walls)
+        {
+          wall1d = {wave.wall_mass, wave.wall_resistance, wave.wall_stiffness,
+                    geo.depth};
+        }
+        std::vector<double> tract_formants, tract_bandwidths;
         for (const auto& r : ac::tube_resonances(
                  fsai::mesh::resample(tract, true, 5e-4), 5000.0, wave.c0,
-                 wave.rho0, ac::LipEnd::flanged))
+                 wave.rho0, ac::LipEnd::flanged, -1.0, wall1d))
         {
           if (tract_formants.size() < 4)
+          {
             tract_formants.push_back(r.f);
+            tract_bandwidths.push_back(r.bandwidth);
+          }
         }
-        fsai::log::info("tract: {} ({:.2f} cm); transfer-function formants "
-                        "(1D, flanged lips) {::.0f} Hz",
-                        tract.source, 100 * tract.length(), tract_formants);
+        // The same 1D model of the acoustic domain as built: its glottis
+        // stays open at the rest gap and leads to the subglottal duct and
+        // its end, which raises F1 above the closed-glottis value
+        ac::GlottalBranch branch{fsai::mesh::voice_subglottal(profile),
+                                 vp.subglottal == "absorbing"};
+        std::vector<double> domain_formants;
+        for (const auto& r : ac::tube_resonances(
+                 fsai::mesh::resample(tract, true, 5e-4), 5000.0, wave.c0,
+                 wave.rho0, ac::LipEnd::flanged, -1.0, wall1d, branch))
+        {
+          if (domain_formants.size() < 4)
+            domain_formants.push_back(r.f);
+        }
+        fsai::log::info("tract: {} ({:.2f} cm, {} walls); transfer-function "
+                        "formants (1D, flanged lips) {::.0f} Hz, bandwidths "
+                        "{::.0f} Hz; with the acoustic domain's open rest "
+                        "glottis and {} subglottal end: {::.0f} Hz",
+                        tract.source, 100 * tract.length(),
+                        vp.yielding_walls ? "yielding" : "rigid",
+                        tract_formants, tract_bandwidths, vp.subglottal,
+                        domain_formants);
 
         // 3. Flow (the glottis scene) and sound on their own meshes
         auto fem = std::make_unique<fsai::glottis::FlowGlottis>(
@@ -268,8 +305,29 @@ int main(int argc, char* argv[])
         auto facets = [&](const char* name)
         { return am.facet_tags->find(am.facet_tag(name)); };
         ac::WaveBoundaries wb;
-        // Subglottal end: sound-hard (the narrow glottis isolates the
-        // tract from it; its own λ/2 resonance, 8.6 kHz, is out of band)
+        // Subglottal end: absorbing by default (an anechoic trachea). A
+        // sound-hard end closes a 20 mm cavity that the rest glottis (the
+        // acoustic domain is fixed, the gap stays open) joins to the tract
+        // as a Helmholtz resonator (measured: a 770 Hz peak that dominated
+        // the sound, and F1 lowered by the cavity's compliance)
+        if (vp.subglottal == "absorbing")
+          wb.absorbing = facets("inlet");
+        if (vp.yielding_walls)
+        {
+          // The tract's walls from the fold's superior attachment to the
+          // lips, as in the 1D model (not the subglottal duct, the baffle
+          // or the step where the channel meets the vowel's tract)
+          const double x0 = geo.fold_length,
+                       x_step = geo.fold_length + geo.outlet_length,
+                       x_end = geo.fold_length + tract.length();
+          wb.yielding
+              = am.facets_where("wall",
+                                [&](const double* x)
+                                {
+                                  return x[0] > x0 and x[0] < x_end - 1e-9
+                                         and std::abs(x[0] - x_step) > 1e-9;
+                                });
+        }
         wb.radiation = facets("radiation");
         wb.radiation_beta = 0.5 / (vg.radius + vg.layer); // planar: 1/(2R)
         wb.vibrating = facets("fold");
@@ -292,6 +350,8 @@ int main(int argc, char* argv[])
         summary.set("tract_length_m", tract.length());
         summary.set("vowel", label);
         summary.set("tract_formants_hz", tract_formants);
+        summary.set("tract_bandwidths_hz", tract_bandwidths);
+        summary.set("domain_formants_hz", domain_formants);
 
         // Source transfer and taper; the fold's surface nodes
         ac::FlowSource source(rt.comm(), *fem->flow().velocity_space(),
@@ -432,23 +492,34 @@ int main(int argc, char* argv[])
         // f0 search down to 60 Hz, or to two periods in a short window
         const double f0 = ac::fundamental_frequency(
             mic, vp.dt, std::max(60.0, 2.6 / (vp.dt * double(mic.size()))));
+        if (!std::isfinite(f0))
+        {
+          fsai::log::warn(
+              "the sound's f0 could not be estimated (window {:.4f} "
+              "s: too short or silent)",
+              vp.dt * double(mic.size()));
+        }
         const std::vector<double> formants = ac::lpc_formants(mic, vp.dt);
         const double spl = ac::spl_db(mic);
-        std::vector<double> formant_err;
-        for (std::size_t k = 0;
-             k < 2 and k < formants.size() and k < tract_formants.size(); ++k)
+        auto errors = [&](const std::vector<double>& ref)
         {
-          formant_err.push_back(100.0 * (formants[k] - tract_formants[k])
-                                / tract_formants[k]);
-        }
+          std::vector<double> e;
+          for (std::size_t k = 0;
+               k < 2 and k < formants.size() and k < ref.size(); ++k)
+            e.push_back(100.0 * (formants[k] - ref[k]) / ref[k]);
+          return e;
+        };
+        const std::vector<double> formant_err = errors(tract_formants);
+        const std::vector<double> domain_err = errors(domain_formants);
         fsai::log::info(
             "fold: {} cycles, f0 {:.2f} Hz, open quotient {:.3f}, peak flow "
             "{:.3e} m³/s, closes every cycle: {}; sound at the microphone: "
             "f0 {:.2f} Hz ({:+.2f} %), SPL {:.1f} dB, LPC formants {::.0f} "
-            "Hz vs tract {::.0f} Hz",
+            "Hz vs tract {::.0f} Hz (closed glottis), {::.0f} Hz (as modelled)",
             cs.cycles, cs.f0_hz, cs.open_quotient, cs.q_peak,
             cs.closes_every_cycle ? "yes" : "no", f0,
-            100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, formants, tract_formants);
+            100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, formants, tract_formants,
+            domain_formants);
 
         // Spectrum of the sound (Hann window) for the chart
         {
@@ -473,6 +544,7 @@ int main(int argc, char* argv[])
         summary.set("f0_fold_hz", cs.f0_hz);
         summary.set("formants_from_sound_hz", formants);
         summary.set("formant_errors_percent", formant_err);
+        summary.set("domain_formant_errors_percent", domain_err);
         summary.set("spl_db", spl);
         summary.set("sim_time_s", vp.duration);
         summary.set("wav", wav);

@@ -75,6 +75,12 @@ void fsai::acoustics::WaveParameters::bind(fsai::common::Parameters& p)
         "Newmark beta (1/4: trapezoidal)");
   p.add("acoustics.newmark_gamma", newmark_gamma,
         "Newmark gamma (1/2: no numerical damping)");
+  p.add("acoustics.wall_mass", wall_mass,
+        "yielding wall: mass per unit area [kg/m^2]");
+  p.add("acoustics.wall_resistance", wall_resistance,
+        "yielding wall: resistance per unit area [Pa s/m]");
+  p.add("acoustics.wall_stiffness", wall_stiffness,
+        "yielding wall: stiffness per unit area [Pa/m]");
 }
 //-----------------------------------------------------------------------------
 void fsai::acoustics::WaveParameters::validate() const
@@ -86,6 +92,11 @@ void fsai::acoustics::WaveParameters::validate() const
   fsai::require(2 * newmark_beta >= newmark_gamma and newmark_beta <= 0.5,
                 "--acoustics.newmark_beta",
                 "in [gamma/2, 1/2] (unconditionally stable)", newmark_beta);
+  fsai::require_positive("--acoustics.wall_mass", wall_mass);
+  fsai::require(wall_resistance >= 0, "--acoustics.wall_resistance", ">= 0",
+                wall_resistance);
+  fsai::require(wall_stiffness >= 0, "--acoustics.wall_stiffness", ">= 0",
+                wall_stiffness);
 }
 //-----------------------------------------------------------------------------
 fsai::acoustics::WaveSolver::WaveSolver(
@@ -93,11 +104,15 @@ fsai::acoustics::WaveSolver::WaveSolver(
     const WaveParameters& params, const WaveBoundaries& boundaries, double dt,
     std::shared_ptr<const fem::Function<double>> sigma, bool lighthill)
     : _dt(dt), _beta(params.newmark_beta), _gamma(params.newmark_gamma),
-      _lighthill(lighthill), _M(nullptr, false), _C(nullptr, false),
-      _K(nullptr, false), _A(nullptr, false), _p_vec(nullptr, false),
-      _v(nullptr, false), _a(nullptr, false), _b_inlet(nullptr, false),
-      _rhs(nullptr, false), _work_p(nullptr, false), _work_v(nullptr, false),
-      _solver(mesh->comm())
+      _lighthill(lighthill), _wall_m(params.wall_mass),
+      _wall_r(params.wall_resistance), _wall_k(params.wall_stiffness),
+      _M(nullptr, false), _C(nullptr, false), _K(nullptr, false),
+      _A(nullptr, false), _p_vec(nullptr, false), _v(nullptr, false),
+      _a(nullptr, false), _b_inlet(nullptr, false), _rhs(nullptr, false),
+      _work_p(nullptr, false), _work_v(nullptr, false), _wall_b(nullptr, false),
+      _wall_mask(nullptr, false), _wu(nullptr, false), _wv(nullptr, false),
+      _wa(nullptr, false), _wu_pred(nullptr, false), _wv_pred(nullptr, false),
+      _wall_work(nullptr, false), _solver(mesh->comm())
 {
   common::ScopedTimer timer("acoustics: setup");
   params.validate();
@@ -149,9 +164,19 @@ fsai::acoustics::WaveSolver::WaveSolver(
   // Boundary roles: each form's ds(1) bound to one set of facets
   mesh_nc->topology_mutable().create_connectivity(tdim - 1, tdim);
   auto tags_rad = role_tags(mesh, boundaries.radiation, "radiation");
+  // The damping (1/c0) ṗ acts on radiation and absorbing facets alike, the
+  // curvature term β p on the radiation facets only
+  std::vector<std::int32_t> damped = boundaries.radiation;
+  damped.insert(damped.end(), boundaries.absorbing.begin(),
+                boundaries.absorbing.end());
+  auto tags_damped = role_tags(mesh, damped, "absorbing");
   auto tags_in = role_tags(mesh, boundaries.inlet, "inlet");
   auto tags_wall = role_tags(mesh, boundaries.vibrating, "vibrating");
-  _tags = {tags_rad, tags_in, tags_wall};
+  auto tags_yield = role_tags(mesh, boundaries.yielding, "yielding");
+  _tags = {tags_rad, tags_damped, tags_in, tags_wall, tags_yield};
+  int has_yield = boundaries.yielding.empty() ? 0 : 1, any_yield = 0;
+  MPI_Allreduce(&has_yield, &any_yield, 1, MPI_INT, MPI_MAX, mesh->comm());
+  _yielding = any_yield;
   int has_wall = boundaries.vibrating.empty() ? 0 : 1, any_wall = 0;
   MPI_Allreduce(&has_wall, &any_wall, 1, MPI_INT, MPI_MAX, mesh->comm());
   _vibrating = any_wall;
@@ -172,7 +197,7 @@ fsai::acoustics::WaveSolver::WaveSolver(
   };
   auto m = form(acoustic_forms::m(tdim, degree), {_V, _V}, {}, {});
   auto c = form(acoustic_forms::c(tdim, degree), {_V, _V}, {{"sigma", s}},
-                on(tags_rad));
+                on(tags_damped));
   auto k = form(acoustic_forms::k(tdim, degree), {_V, _V}, {{"sigma", s}},
                 on(tags_rad));
   _L_source = form(acoustic_forms::L_source(tdim, degree), {_V},
@@ -183,6 +208,8 @@ fsai::acoustics::WaveSolver::WaveSolver(
       = form(acoustic_forms::b_inlet(tdim, degree), {_V}, {}, on(tags_in));
   auto measure = form(acoustic_forms::boundary_measure(tdim, degree), {}, {},
                       on(tags_in));
+  auto b_yield
+      = form(acoustic_forms::b_inlet(tdim, degree), {_V}, {}, on(tags_yield));
 
   // E21 matrices, assembled once
   common::ScopedTimer t_assemble("acoustics: assemble matrices");
@@ -241,6 +268,42 @@ fsai::acoustics::WaveSolver::WaveSolver(
     _b_assembly->scatter_rev(std::plus<double>());
     la::petsc::Vector w(la::petsc::create_vector_wrap(*_b_assembly), false);
     VecCopy(w.vec(), _b_inlet.vec());
+  }
+  // Yielding walls (E21 with ∂p/∂n = −ρ0 ü on them): the lumped boundary
+  // mass B = ρ0 ∫ φ_i w ds. The wall's Newmark step, solved node by node,
+  // makes ü_{n+1} = (p_{n+1} − r ṽ − k ũ)/m_eff, m_eff = m + γΔt r + βΔt² k,
+  // and p_{n+1} = p~ + βΔt² p̈_{n+1}: A gains the diagonal B βΔt²/m_eff, the
+  // right-hand side −B (p~ − r ṽ − k ũ)/m_eff (add_wall_load)
+  _wall_b = like();
+  _wall_mask = like();
+  _wu = like();
+  _wv = like();
+  _wa = like();
+  _wu_pred = like();
+  _wv_pred = like();
+  _wall_work = like();
+  if (_yielding)
+  {
+    _b_assembly->set(0.0);
+    fem::assemble_vector(_b_assembly->mutable_array(), *b_yield);
+    _b_assembly->scatter_rev(std::plus<double>());
+    la::petsc::Vector w(la::petsc::create_vector_wrap(*_b_assembly), false);
+    VecCopy(w.vec(), _wall_b.vec());
+    PetscInt n;
+    VecGetLocalSize(_wall_b.vec(), &n);
+    const PetscScalar* b;
+    PetscScalar* mask;
+    VecGetArrayRead(_wall_b.vec(), &b);
+    VecGetArray(_wall_mask.vec(), &mask);
+    for (PetscInt i = 0; i < n; ++i)
+      mask[i] = b[i] != 0.0 ? 1.0 : 0.0;
+    VecRestoreArray(_wall_mask.vec(), &mask);
+    VecRestoreArrayRead(_wall_b.vec(), &b);
+    const double m_eff
+        = _wall_m + _gamma * dt * _wall_r + _beta * dt * dt * _wall_k;
+    VecCopy(_wall_b.vec(), _work_p.vec());
+    VecScale(_work_p.vec(), _beta * dt * dt / m_eff);
+    MatDiagonalSet(_A.mat(), _work_p.vec(), ADD_VALUES);
   }
   double local = fem::assemble_scalar(*measure);
   MPI_Allreduce(&local, &_inlet_measure, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
@@ -323,6 +386,17 @@ void fsai::acoustics::WaveSolver::set_initial_state(
   VecAXPY(_rhs.vec(), -1.0, _work_v.vec());
   MatMult(_K.mat(), _p_vec.vec(), _work_p.vec());
   VecAXPY(_rhs.vec(), -1.0, _work_p.vec());
+  // Walls at rest: ü(0) = p(0)/m, and its load −B ü(0)
+  VecSet(_wu.vec(), 0.0);
+  VecSet(_wv.vec(), 0.0);
+  VecSet(_wa.vec(), 0.0);
+  if (_yielding)
+  {
+    VecPointwiseMult(_wa.vec(), _p_vec.vec(), _wall_mask.vec());
+    VecScale(_wa.vec(), 1.0 / _wall_m);
+    VecPointwiseMult(_wall_work.vec(), _wa.vec(), _wall_b.vec());
+    VecAXPY(_rhs.vec(), -1.0, _wall_work.vec());
+  }
 
   Mat M;
   MatDuplicate(_M.mat(), MAT_COPY_VALUES, &M);
@@ -369,6 +443,14 @@ void fsai::acoustics::WaveSolver::step()
   VecAXPY(_rhs.vec(), -1.0, tmp);
   MatMult(_K.mat(), _work_p.vec(), tmp);
   VecAXPY(_rhs.vec(), -1.0, tmp);
+  if (_yielding)
+  {
+    // Wall predictors ũ = u + Δt u̇ + (½ − β)Δt² ü, ṽ = u̇ + (1 − γ)Δt ü
+    VecWAXPY(_wu_pred.vec(), dt, _wv.vec(), _wu.vec());
+    VecAXPY(_wu_pred.vec(), (0.5 - _beta) * dt * dt, _wa.vec());
+    VecWAXPY(_wv_pred.vec(), (1.0 - _gamma) * dt, _wa.vec(), _wv.vec());
+    add_wall_load(_rhs.vec(), _work_p.vec());
+  }
   if (!_bc_rows.empty())
   {
     PetscScalar* r;
@@ -395,6 +477,32 @@ void fsai::acoustics::WaveSolver::step()
   VecWAXPY(_p_vec.vec(), _beta * dt * dt, _a.vec(), _work_p.vec());
   VecWAXPY(_v.vec(), _gamma * dt, _a.vec(), _work_v.vec());
   _p->x()->scatter_fwd();
+  if (_yielding)
+  {
+    // ü = (p − r ṽ − k ũ)/m_eff on the wall nodes, then the correctors
+    const double m_eff
+        = _wall_m + _gamma * dt * _wall_r + _beta * dt * dt * _wall_k;
+    VecCopy(_p_vec.vec(), _wa.vec());
+    VecAXPY(_wa.vec(), -_wall_r, _wv_pred.vec());
+    VecAXPY(_wa.vec(), -_wall_k, _wu_pred.vec());
+    VecPointwiseMult(_wa.vec(), _wa.vec(), _wall_mask.vec());
+    VecScale(_wa.vec(), 1.0 / m_eff);
+    VecWAXPY(_wu.vec(), _beta * dt * dt, _wa.vec(), _wu_pred.vec());
+    VecWAXPY(_wv.vec(), _gamma * dt, _wa.vec(), _wv_pred.vec());
+  }
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::add_wall_load(Vec rhs, Vec p)
+{
+  // rhs −= B (p − r ṽ − k ũ)/m_eff (the predictors are in _wu_pred/_wv_pred)
+  const double m_eff
+      = _wall_m + _gamma * _dt * _wall_r + _beta * _dt * _dt * _wall_k;
+  Vec w = _wall_work.vec();
+  VecCopy(p, w);
+  VecAXPY(w, -_wall_r, _wv_pred.vec());
+  VecAXPY(w, -_wall_k, _wu_pred.vec());
+  VecPointwiseMult(w, w, _wall_b.vec());
+  VecAXPY(rhs, -1.0 / m_eff, w);
 }
 //-----------------------------------------------------------------------------
 double fsai::acoustics::WaveSolver::energy() const

@@ -33,6 +33,14 @@ struct WaveParameters
   double rho0 = 1.2; ///< Air density [kg/m³]
   double newmark_beta = 0.25;
   double newmark_gamma = 0.5;
+  /// Yielding walls (WaveBoundaries::yielding), a locally reacting
+  /// mass–resistance–spring per unit area, m ü + r u̇ + k u = p' (u the
+  /// outward wall displacement): the soft-tissue values of Ishizaka,
+  /// French & Flanagan (1975) as used by Maeda (1982), 1.5 g/cm²,
+  /// 1600 dyn s/cm³, 3·10⁵ dyn/cm³, in SI
+  double wall_mass = 15.0;        ///< [kg/m²]
+  double wall_resistance = 1.6e4; ///< [Pa s/m]
+  double wall_stiffness = 3.0e6;  ///< [Pa/m]
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
@@ -46,12 +54,19 @@ struct WaveBoundaries
   std::vector<std::int32_t> radiation;
   /// β [1/m]: 0 (Sommerfeld) or the curvature term of Bayliss–Turkel
   double radiation_beta = 0.0;
+  /// Plane-wave absorbing end (1/c0) ṗ + ∂p/∂n = 0 (β = 0 whatever
+  /// radiation_beta is): a duct continued by an anechoic termination
+  std::vector<std::int32_t> absorbing;
   /// Volume-velocity source ∂p/∂n = ρ0 du/dt (set_inlet_acceleration)
   std::vector<std::int32_t> inlet;
   /// Vibrating wall ∂p/∂n = −ρ0 a·n (wall_acceleration())
   std::vector<std::int32_t> vibrating;
   /// Pressure release p' = 0
   std::vector<std::int32_t> pressure_release;
+  /// Yielding (locally reacting) wall ∂p/∂n = −ρ0 ü with
+  /// m ü + r u̇ + k u = p' (WaveParameters::wall_*): the wall losses that
+  /// give the tract's resonances their bandwidths
+  std::vector<std::int32_t> yielding;
 };
 
 /// Newmark solver for E21 on a fixed mesh. Usage per step: set the source
@@ -100,7 +115,8 @@ public:
   /// Time step [s]
   double dt() const { return _dt; }
   /// Discrete energy ½ ṖᵀMṖ + ½ PᵀKP (collective). Conserved exactly (to
-  /// round-off) by the trapezoidal Newmark scheme when C = 0 and b = 0.
+  /// round-off) by the trapezoidal Newmark scheme when C = 0, b = 0 and
+  /// there are no yielding walls.
   double energy() const;
   /// Acoustic pressure p' (ghosts up to date)
   std::shared_ptr<dolfinx::fem::Function<double>> pressure() const
@@ -120,7 +136,10 @@ private:
   void assemble_source(Vec b);
 
   double _dt, _t = 0.0, _beta, _gamma, _inlet_dudt = 0.0, _inlet_measure = 0.0;
-  bool _lighthill, _vibrating = false;
+  bool _lighthill, _vibrating = false, _yielding = false;
+  double _wall_m, _wall_r, _wall_k; // per unit area
+  /// Subtract the yielding walls' load B (p − r ṽ − k ũ)/m_eff from rhs
+  void add_wall_load(Vec rhs, Vec p);
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V, _Vv, _Vs;
   std::shared_ptr<dolfinx::fem::Function<double>> _p, _v_flow, _taper, _a_wall;
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
@@ -130,6 +149,11 @@ private:
   dolfinx::la::petsc::Matrix _M, _C, _K, _A;
   dolfinx::la::petsc::Vector _p_vec; // wraps _p->x()
   dolfinx::la::petsc::Vector _v, _a, _b_inlet, _rhs, _work_p, _work_v;
+  // Yielding walls: lumped boundary mass ρ0 ∫ φ_i w ds, its 0/1 mask and
+  // the wall's nodal state (displacement, velocity, acceleration) with
+  // its Newmark predictors
+  dolfinx::la::petsc::Vector _wall_b, _wall_mask, _wu, _wv, _wa, _wu_pred,
+      _wv_pred, _wall_work;
   std::unique_ptr<dolfinx::la::Vector<double>> _b_assembly;
   dolfinx::la::petsc::KrylovSolver _solver;
 };

@@ -51,6 +51,7 @@ fsai::acoustics::PulseResult fsai::acoustics::pulse_response(
   pulse.validate();
   WaveBoundaries b;
   b.inlet = facets(m, "glottis");
+  b.yielding = bm.yielding;
   std::shared_ptr<dolfinx::fem::Function<double>> sigma;
   if (bm.radiation == "pressure-release")
     b.pressure_release = facets(m, "lips");

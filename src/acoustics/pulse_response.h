@@ -54,6 +54,9 @@ struct TractBoundaryModel
   bool spherical = false;         ///< β = 1/R (3D, axisymmetric); else 1/(2R)
   bool curvature = true;          ///< false: plain Sommerfeld (β = 0)
   double layer = 0.0;             ///< absorbing-layer thickness [m]
+  /// Yielding tract walls (WaveParameters::wall_*): local facets, empty for
+  /// rigid walls
+  std::vector<std::int32_t> yielding;
 };
 
 /// Time series of one pulse run

@@ -80,14 +80,22 @@ double fsai::acoustics::write_wav(const std::string& path,
 //-----------------------------------------------------------------------------
 double fsai::acoustics::fundamental_frequency(const std::vector<double>& x,
                                               double dt, double f_min,
-                                              double f_max)
+                                              double f_max, double f_lowpass,
+                                              double periodicity)
 {
-  // Low-pass first (two passes of a boxcar of 1/(2 f_max): zeros at
-  // 2 f_max and its multiples), so that tract resonances and broadband
-  // flow noise do not pull the autocorrelation peak
+  fsai::require_positive("f0 search: f_min", f_min);
+  fsai::require_positive("f0 search: f_max", f_max);
+  if (f_min >= f_max) // a signal too short for two periods of f_max
+    return NAN;
+  fsai::require_positive("f0 low-pass", f_lowpass);
+  fsai::require(periodicity > 0 and periodicity <= 1, "f0 periodicity",
+                "in (0, 1]", periodicity);
+  // Low-pass first (two passes of a boxcar of 1/(2 f_lowpass): zeros at
+  // 2 f_lowpass and its multiples), so that higher tract resonances and
+  // broadband flow noise do not pull the autocorrelation peak
   std::vector<double> y = demeaned(x);
   const std::size_t m
-      = std::max<std::size_t>(1, std::lround(0.5 / (f_max * dt)));
+      = std::max<std::size_t>(1, std::lround(0.5 / (f_lowpass * dt)));
   for (int pass = 0; pass < 2 and y.size() > m; ++pass)
   {
     std::vector<double> z(y.size() - m + 1);
@@ -123,7 +131,7 @@ double fsai::acoustics::fundamental_frequency(const std::vector<double>& x,
     return NAN;
   for (std::size_t l = std::max<std::size_t>(l0, 2); l <= l1; ++l)
   {
-    if (r[l] >= 0.9 * rmax and r[l] >= r[l - 1] and r[l] >= r[l + 1])
+    if (r[l] >= periodicity * rmax and r[l] >= r[l - 1] and r[l] >= r[l + 1])
     {
       const double a = r[l - 1], b = r[l], c = r[l + 1];
       const double den = a - 2 * b + c;

@@ -22,13 +22,21 @@ std::vector<double> resample_linear(const std::vector<double>& x, double dt,
 double write_wav(const std::string& path, const std::vector<double>& x,
                  int rate, double peak = 0.9);
 
-/// Fundamental frequency [Hz] of x (sampled every dt) from the
-/// autocorrelation of x low-passed by two boxcars of length 1/(2 f_max):
-/// the first maximum within 90 % of the largest one for
-/// periods in [1/f_max, 1/f_min] (so a period, not a multiple of it),
-/// refined by a parabola; NaN if x is silent
+/// Fundamental frequency [Hz] of x (sampled every dt) from the unbiased
+/// autocorrelation of x low-passed by two boxcars of length
+/// 1/(2 f_lowpass) (zeros at 2 f_lowpass and its multiples: the harmonics
+/// up to ~f_lowpass stay, higher resonances and flow noise go): the first
+/// maximum within `periodicity` of the largest one for periods in
+/// [1/f_max, 1/f_min] (so a period, not a multiple of it), refined by a
+/// parabola; NaN if x is silent. A low-pass near f0 would leave too few
+/// odd harmonics to tell T0 from T0/2 when the tract amplifies h2 (default
+/// [u]: h1 20 dB below h2); with 0.9 instead of 0.95, a sub-period whose
+/// autocorrelation reaches 92 % of r(T0) (odd harmonics ~4 % of the energy,
+/// the same run) would pass for the period.
 double fundamental_frequency(const std::vector<double>& x, double dt,
-                             double f_min = 60.0, double f_max = 400.0);
+                             double f_min = 60.0, double f_max = 400.0,
+                             double f_lowpass = 1000.0,
+                             double periodicity = 0.95);
 
 /// Formants of a voiced signal by linear prediction (autocorrelation
 /// method): resampled to 2 f_max, pre-emphasis 1 − 0.97 z⁻¹, Hamming

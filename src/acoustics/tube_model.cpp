@@ -32,12 +32,16 @@ fsai::acoustics::lip_end_from_string(const std::string& s)
                          + s + "')");
 }
 //-----------------------------------------------------------------------------
-fsai::acoustics::TubeResponse
-fsai::acoustics::tube_response(const fsai::mesh::AreaFunction& af, double f,
-                               double c0, double rho0, LipEnd end, double x_obs)
+fsai::acoustics::TubeResponse fsai::acoustics::tube_response(
+    const fsai::mesh::AreaFunction& af, double f, double c0, double rho0,
+    LipEnd end, double x_obs, const TubeWall& wall, const GlottalBranch& branch)
 {
   const cplx j(0.0, 1.0);
   const double k = 2.0 * M_PI * f / c0;
+  const double omega = 2.0 * M_PI * f;
+  const cplx Zw = wall.rigid() ? cplx(0.0)
+                               : wall.resistance + j * omega * wall.mass
+                                     + wall.stiffness / (j * omega);
   const double L = af.length();
   if (x_obs < 0.0)
     x_obs = L;
@@ -45,11 +49,25 @@ fsai::acoustics::tube_response(const fsai::mesh::AreaFunction& af, double f,
   Chain K = {1.0, 0.0, 0.0, 1.0}, Kb = K;
   for (std::size_t s = 0; s < af.size(); ++s)
   {
-    const double Z = rho0 * c0 / af.area[s];
+    const double A = af.area[s];
+    const double Z = rho0 * c0 / A;
     auto section = [&](double l) -> Chain
     {
-      const double ck = std::cos(k * l), sk = std::sin(k * l);
-      return {ck, j * Z * sk, j * sk / Z, ck};
+      if (wall.rigid())
+      {
+        const double ck = std::cos(k * l), sk = std::sin(k * l);
+        return {ck, j * Z * sk, j * sk / Z, ck};
+      }
+      const double P
+          = wall.depth > 0.0 ? 2.0 * wall.depth : 2.0 * std::sqrt(M_PI * A);
+      const cplx z = j * omega * rho0 / A;
+      const cplx y = j * omega * A / (rho0 * c0 * c0) + P / Zw;
+      cplx g = std::sqrt(z * y);
+      if (g.real() < 0.0)
+        g = -g;
+      const cplx Zc = z / g;
+      const cplx ch = std::cosh(g * l), sh = std::sinh(g * l);
+      return {ch, Zc * sh, sh / Zc, ch};
     };
     K = multiply(K, section(af.x_end[s] - af.x_start(s)));
     const double lb = af.x_end[s] - std::max(af.x_start(s), x_obs);
@@ -65,8 +83,34 @@ fsai::acoustics::tube_response(const fsai::mesh::AreaFunction& af, double f,
   else if (end == LipEnd::flanged)
     ZL = ZL0 * (0.5 * ka * ka + j * 0.8216 * ka);
   // [P_g; U_g] = K [Z_L U_L; U_L], [P_x; U_x] = Kb [Z_L U_L; U_L]
-  const cplx Ug = K[2] * ZL + K[3];
-  return {(K[0] * ZL + K[1]) / Ug, ZL / Ug, (Kb[0] * ZL + Kb[1]) / Ug};
+  const cplx Pg = K[0] * ZL + K[1];
+  cplx Ug = K[2] * ZL + K[3];
+  if (!branch.closed())
+  {
+    // Upstream branch (rigid walls): [p_far; U_far] = Kup [p_g; U_g'] with
+    // U in +x; at the far end p = −(ρ0c0/A) U (a wave leaving towards the
+    // lungs) or U = 0. Z_up = p_g / (−U_g'), the flow into the branch.
+    Chain Kup = {1.0, 0.0, 0.0, 1.0};
+    const auto& up = branch.upstream;
+    for (std::size_t s = 0; s < up.size(); ++s)
+    {
+      const double Z = rho0 * c0 / up.area[s];
+      const double l = up.x_end[s] - up.x_start(s);
+      const double ck = std::cos(k * l), sk = std::sin(k * l);
+      Kup = multiply(Kup, Chain{ck, j * Z * sk, j * sk / Z, ck});
+    }
+    // Invert the (unimodular) chain: [p_g; U_g'] = Kup⁻¹ [p_far; U_far]
+    const cplx det = Kup[0] * Kup[3] - Kup[1] * Kup[2];
+    const Chain inv
+        = {Kup[3] / det, -Kup[1] / det, -Kup[2] / det, Kup[0] / det};
+    const cplx p_far = branch.anechoic ? -rho0 * c0 / up.area.front() : 1.0;
+    const cplx U_far = branch.anechoic ? 1.0 : 0.0;
+    const cplx p_j = inv[0] * p_far + inv[1] * U_far;
+    const cplx U_j = inv[2] * p_far + inv[3] * U_far;
+    const cplx Z_up = -p_j / U_j;
+    Ug += Pg / Z_up; // the source feeds the tract and the branch
+  }
+  return {Pg / Ug, ZL / Ug, (Kb[0] * ZL + Kb[1]) / Ug};
 }
 //-----------------------------------------------------------------------------
 double
@@ -77,10 +121,9 @@ fsai::acoustics::default_observation_point(const fsai::mesh::AreaFunction& af,
   return end == LipEnd::pressure_release ? L - std::min(0.005, 0.25 * L) : L;
 }
 //-----------------------------------------------------------------------------
-std::vector<fsai::acoustics::Resonance>
-fsai::acoustics::tube_resonances(const fsai::mesh::AreaFunction& af,
-                                 double f_max, double c0, double rho0,
-                                 LipEnd end, double x_obs)
+std::vector<fsai::acoustics::Resonance> fsai::acoustics::tube_resonances(
+    const fsai::mesh::AreaFunction& af, double f_max, double c0, double rho0,
+    LipEnd end, double x_obs, const TubeWall& wall, const GlottalBranch& branch)
 {
   if (x_obs < 0.0)
     x_obs = default_observation_point(af, end);
@@ -88,7 +131,7 @@ fsai::acoustics::tube_resonances(const fsai::mesh::AreaFunction& af,
   std::vector<double> f, mag;
   for (double fi = df; fi <= f_max + 50.0; fi += df)
   {
-    TubeResponse r = tube_response(af, fi, c0, rho0, end, x_obs);
+    TubeResponse r = tube_response(af, fi, c0, rho0, end, x_obs, wall, branch);
     f.push_back(fi);
     mag.push_back(std::abs(r.h_obs));
   }

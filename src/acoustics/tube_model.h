@@ -29,6 +29,35 @@ enum class LipEnd
 /// Parse "pressure-release", "unflanged", "flanged"
 LipEnd lip_end_from_string(const std::string& s);
 
+/// Yielding walls of the 1D model: a shunt admittance per unit length
+/// P/Z_w, Z_w = r + jωm + k/(jω) per unit wall area, P the wall perimeter
+/// of a section: 2 × depth for a planar tract of that depth (its two
+/// walls, as in the planar FE model), 2 √(π A) for a circular one
+/// (depth 0). Each section is then a lossy line with
+///   γ = √(z y), Z_c = z/γ, z = jωρ0/A, y = jωA/(ρ0 c0²) + P/Z_w,
+///   chain [[cosh γl, Z_c sinh γl], [sinh γl / Z_c, cosh γl]]
+struct TubeWall
+{
+  double mass = 0.0;       ///< [kg/m²] (0: rigid walls)
+  double resistance = 0.0; ///< [Pa s/m]
+  double stiffness = 0.0;  ///< [Pa/m]
+  double depth = 0.0;      ///< planar depth L_g [m] (0: circular sections)
+  bool rigid() const { return mass <= 0.0; }
+};
+
+/// What the tract's glottal end sees: closed (no `upstream` sections, the
+/// classic transfer-function set-up), or the sections `upstream` (x from
+/// its far end, the trachea, to its length, where it joins the tract at
+/// the source point) ended by an anechoic or a rigid termination. The
+/// source's volume velocity then divides between the tract and this branch:
+/// H = P_L / (U_tract + P_0 / Z_up), Z_up the impedance looking upstream.
+struct GlottalBranch
+{
+  fsai::mesh::AreaFunction upstream; ///< empty: closed glottal end
+  bool anechoic = true;              ///< far end ρ0c0/A (else rigid)
+  bool closed() const { return upstream.area.empty(); }
+};
+
 /// Transfer functions of a stepped tube at frequency f [Hz]
 struct TubeResponse
 {
@@ -41,7 +70,8 @@ struct TubeResponse
 /// observed at x_obs (distance from the glottis, default: the lips)
 TubeResponse tube_response(const fsai::mesh::AreaFunction& af, double f,
                            double c0, double rho0, LipEnd end,
-                           double x_obs = -1.0);
+                           double x_obs = -1.0, const TubeWall& wall = {},
+                           const GlottalBranch& branch = {});
 
 /// Resonances of the tube with a closed glottis: peaks of |P(x_obs)/U_g|
 /// below f_max with their -3 dB bandwidths (0 for a lossless tube with
@@ -55,7 +85,9 @@ struct Resonance
 };
 std::vector<Resonance> tube_resonances(const fsai::mesh::AreaFunction& af,
                                        double f_max, double c0, double rho0,
-                                       LipEnd end, double x_obs = -1.0);
+                                       LipEnd end, double x_obs = -1.0,
+                                       const TubeWall& wall = {},
+                                       const GlottalBranch& branch = {});
 
 /// The default observation point of tube_resonances for a lip end
 double default_observation_point(const fsai::mesh::AreaFunction& af,

@@ -3,6 +3,7 @@
 
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/MeshTags.h>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -23,5 +24,10 @@ struct MeshData
   int facet_tag(const std::string& name) const;
   /// Tag of the cell group `name`
   int cell_tag(const std::string& name) const;
+  /// Local facets of the group `name` whose midpoint (x, y, z) satisfies
+  /// `keep`
+  std::vector<std::int32_t>
+  facets_where(const std::string& name,
+               const std::function<bool(const double*)>& keep) const;
 };
 } // namespace fsai::mesh

@@ -423,6 +423,20 @@ fsai::mesh::MeshData fsai::mesh::from_geo_file(MPI_Comm comm,
                          });
 }
 //-----------------------------------------------------------------------------
+std::vector<std::int32_t> fsai::mesh::MeshData::facets_where(
+    const std::string& name,
+    const std::function<bool(const double*)>& keep) const
+{
+  const std::vector<std::int32_t> all = facet_tags->find(facet_tag(name));
+  const std::vector<double> mid = dolfinx::mesh::compute_midpoints(
+      *mesh, mesh->topology().dim() - 1, all);
+  std::vector<std::int32_t> out;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (keep(mid.data() + 3 * i))
+      out.push_back(all[i]);
+  return out;
+}
+//-----------------------------------------------------------------------------
 int fsai::mesh::MeshData::facet_tag(const std::string& name) const
 {
   return lookup(facet_names, "facet", name);

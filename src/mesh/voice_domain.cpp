@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "voice_domain.h"
 #include "gmsh_model.h"
+#include <algorithm>
 #include <cmath>
 #include <common/Parameters.h>
 #include <common/errors.h>
@@ -61,6 +62,41 @@ fsai::mesh::voice_tract(const AreaFunction& vowel,
     }
   }
   return t;
+}
+//-----------------------------------------------------------------------------
+fsai::mesh::AreaFunction
+fsai::mesh::voice_subglottal(const glottis::FoldProfile& profile)
+{
+  const auto& g = profile.geometry();
+  const auto& pts = profile.points();
+  AreaFunction a;
+  a.source = "subglottal duct and glottis at rest";
+  const double Ld = g.inlet_length;
+  const int nd = std::max(1, int(std::round(Ld / 1e-3)));
+  for (int i = 1; i <= nd; ++i)
+  {
+    a.x_end.push_back(Ld * i / nd);
+    a.area.push_back(2 * g.half_height * g.depth);
+  }
+  // Glottis: the surface's lowest y over each section's centre (the
+  // polyline need not be monotone in x at the rounded edges)
+  const double T = g.fold_length, dx = 0.05e-3;
+  const int n = std::max(1, int(std::round(T / dx)));
+  for (int i = 0; i < n; ++i)
+  {
+    const double xc = T * (i + 0.5) / n;
+    double y = g.half_height;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+    {
+      const auto& p = pts[k];
+      const auto& q = pts[k + 1];
+      if ((p[0] - xc) * (q[0] - xc) <= 0.0 and p[0] != q[0])
+        y = std::min(y, p[1] + (q[1] - p[1]) * (xc - p[0]) / (q[0] - p[0]));
+    }
+    a.x_end.push_back(Ld + T * (i + 1) / n);
+    a.area.push_back(2 * std::max(y, 1e-9) * g.depth);
+  }
+  return a;
 }
 //-----------------------------------------------------------------------------
 fsai::mesh::MeshData

@@ -43,6 +43,14 @@ struct VoiceDomainGeometry
 AreaFunction voice_tract(const AreaFunction& vowel,
                          const glottis::FoldProfile& profile);
 
+/// The acoustic domain upstream of the tract, as an area function for the
+/// 1D model: the subglottal duct (area 2 H L_g) from the flow inlet, then
+/// the glottis at rest, area 2 y(x) L_g with y the fold surface's lowest
+/// point at x (sections of 0.05 mm), up to the fold's superior attachment
+/// x = T where the tract of voice_tract begins. The acoustic domain is
+/// fixed, so its glottis stays open at the rest gap.
+AreaFunction voice_subglottal(const glottis::FoldProfile& profile);
+
 /// Mesh of the acoustic domain (tract from voice_tract). x as in
 /// glottis_channel (fold from 0 to T, inlet at −inlet_length), lips at
 /// x = T + tract length. Facet groups "inlet" (subglottal end), "axis",
