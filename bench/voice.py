@@ -8,7 +8,8 @@ Sommerfeld condition; and the lossless tract (rigid walls, sound-hard
 subglottal end) where the sound fails.
 
 Errors: f0 of the sound against the fold's f0 of the same run; F1, F2 from
-the sound (LPC) against the transfer-function formants of the same tract
+the sound (LPC of its periodic part; the LPC of the whole window is listed
+too) against the transfer-function formants of the same tract
 (1D model, closed glottis) and of the acoustic domain as modelled (1D, its
 open rest glottis and subglottal end); f0 and SPL also against the finest
 resolution.
@@ -70,6 +71,7 @@ for name, extra in runs.items():
     with open(os.path.join(run, "summary.json")) as f:
         s = json.load(f)
     F, Ft = s["formants_from_sound_hz"], s["tract_formants_hz"]
+    Fw = s.get("formants_lpc_window_hz", F) + [float("nan")] * 2
     Fd = s.get("domain_formants_hz", [float("nan")] * 2)  # not in stop-15 runs
     Fd = Fd + [float("nan")] * (2 - len(Fd))
     err = [100 * (F[k] - Ft[k]) / Ft[k] if k < len(F) else float("nan") for k in range(2)]
@@ -80,6 +82,8 @@ for name, extra in runs.items():
                      f0_err=100 * (s["f0_hz"] - s["f0_fold_hz"]) / s["f0_fold_hz"],
                      F1=F[0] if F else float("nan"), F2=F[1] if len(F) > 1 else float("nan"),
                      F1_tract=Ft[0], F2_tract=Ft[1], F1_err=err[0], F2_err=err[1],
+                     F1_window=Fw[0], F2_window=Fw[1],
+                     periodic_fraction=s.get("periodic_fraction", float("nan")),
                      F1_domain=Fd[0], F2_domain=Fd[1], F1_domain_err=derr[0],
                      F2_domain_err=derr[1],
                      spl_db=s["spl_db"], cycles=s["cycles"],

@@ -133,6 +133,46 @@ TEST_CASE("Fundamental frequency and LPC formants of a synthetic vowel",
   CHECK(ac::spl_db(sine) == Approx(93.98).margin(0.01));
 }
 
+TEST_CASE("Periodic part of a voice with a ringing resonance: the "
+          "formants are the voice's",
+          "[voice]")
+{
+  // A synthetic vowel plus a lightly damped line at a non-harmonic 1957 Hz
+  // (B = 2 Hz: a transient's free ringing, as the upper tract resonances in
+  // fsai_demo) carrying as much energy as the vowel. Pitch-synchronous
+  // averaging keeps the harmonics of f0 and removes the line; LPC of the
+  // periodic part finds F1, F2 as without the line.
+  namespace ac = fsai::acoustics;
+  const double fs = 50000, f0 = 123.4;
+  auto x = synthetic_vowel(f0, {600, 1400, 2500}, {80, 100, 150}, fs, 0.1);
+  double e = 0;
+  for (double v : x)
+    e += v * v;
+  const double a = std::sqrt(2 * e / double(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    const double t = i / fs;
+    x[i] += a * std::exp(-M_PI * 2.0 * t) * std::sin(2 * M_PI * 1957 * t);
+  }
+  const double f = ac::fundamental_frequency(x, 1 / fs);
+  CHECK(std::abs(f - f0) / f0 < 2e-3);
+  double fraction = 0;
+  const auto cycle = ac::periodic_part(x, 1 / fs, f, &fraction);
+  REQUIRE(cycle.size() == std::size_t(std::lround(fs / f)));
+  CHECK(fraction > 0.3);
+  CHECK(fraction < 0.7);
+  std::vector<double> voiced;
+  for (int r = 0; r < 12; ++r)
+    voiced.insert(voiced.end(), cycle.begin(), cycle.end());
+  const auto F = ac::lpc_formants(voiced, 1 / fs);
+  REQUIRE(F.size() >= 2);
+  CHECK(std::abs(F[0] - 600) / 600 < 0.05);
+  CHECK(std::abs(F[1] - 1400) / 1400 < 0.05);
+  // Too short, or no pitch: nothing, no crash
+  CHECK(ac::periodic_part(x, 1 / fs, NAN).empty());
+  CHECK(ac::periodic_part({1.0, 2.0, 3.0, 4.0}, 1 / fs, f0).empty());
+}
+
 TEST_CASE("WAV: 16-bit mono at 44.1 kHz, readable; disk full is an error",
           "[voice]")
 {

@@ -499,7 +499,27 @@ int main(int argc, char* argv[])
               "s: too short or silent)",
               vp.dt * double(mic.size()));
         }
-        const std::vector<double> formants = ac::lpc_formants(mic, vp.dt);
+        // Formants of the voice: LPC of its periodic part (pitch-synchronous
+        // average over the window's whole periods at the sound's own f0,
+        // repeated over the window's length). Transients — an impact, the
+        // start-up — leave the lightly damped upper resonances ringing at
+        // their own frequencies for longer than the run; LPC of the raw
+        // window puts poles on those lines (kept as
+        // formants_lpc_window_hz for comparison)
+        double periodic_fraction = NAN;
+        const std::vector<double> cycle
+            = ac::periodic_part(mic, vp.dt, f0, &periodic_fraction);
+        const std::vector<double> formants_window
+            = ac::lpc_formants(mic, vp.dt);
+        std::vector<double> formants = formants_window;
+        if (!cycle.empty())
+        {
+          std::vector<double> voiced;
+          while (voiced.size() + cycle.size()
+                 <= std::max(mic.size(), 2 * cycle.size()))
+            voiced.insert(voiced.end(), cycle.begin(), cycle.end());
+          formants = ac::lpc_formants(voiced, vp.dt);
+        }
         const double spl = ac::spl_db(mic);
         auto errors = [&](const std::vector<double>& ref)
         {
@@ -514,12 +534,14 @@ int main(int argc, char* argv[])
         fsai::log::info(
             "fold: {} cycles, f0 {:.2f} Hz, open quotient {:.3f}, peak flow "
             "{:.3e} m³/s, closes every cycle: {}; sound at the microphone: "
-            "f0 {:.2f} Hz ({:+.2f} %), SPL {:.1f} dB, LPC formants {::.0f} "
-            "Hz vs tract {::.0f} Hz (closed glottis), {::.0f} Hz (as modelled)",
+            "f0 {:.2f} Hz ({:+.2f} %), SPL {:.1f} dB, periodic part {:.1f} % "
+            "of the energy, its LPC formants {::.0f} Hz (whole window: "
+            "{::.0f} Hz) vs tract {::.0f} Hz (closed glottis), {::.0f} Hz "
+            "(as modelled)",
             cs.cycles, cs.f0_hz, cs.open_quotient, cs.q_peak,
             cs.closes_every_cycle ? "yes" : "no", f0,
-            100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, formants, tract_formants,
-            domain_formants);
+            100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, 100 * periodic_fraction,
+            formants, formants_window, tract_formants, domain_formants);
 
         // Spectrum of the sound (Hann window) for the chart
         {
@@ -543,6 +565,8 @@ int main(int argc, char* argv[])
         summary.set("f0_hz", f0);
         summary.set("f0_fold_hz", cs.f0_hz);
         summary.set("formants_from_sound_hz", formants);
+        summary.set("formants_lpc_window_hz", formants_window);
+        summary.set("periodic_fraction", periodic_fraction);
         summary.set("formant_errors_percent", formant_err);
         summary.set("domain_formant_errors_percent", domain_err);
         summary.set("spl_db", spl);

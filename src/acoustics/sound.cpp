@@ -210,3 +210,46 @@ double fsai::acoustics::spl_db(const std::vector<double>& x)
       = std::inner_product(y.begin(), y.end(), y.begin(), 0.0) / y.size();
   return 10 * std::log10(ms / (20e-6 * 20e-6));
 }
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::acoustics::periodic_part(const std::vector<double>& x,
+                                                   double dt, double f0,
+                                                   double* fraction)
+{
+  fsai::require_positive("sampling interval", dt);
+  if (fraction)
+    *fraction = NAN;
+  if (!(std::isfinite(f0) and f0 > 0) or x.size() < 4)
+    return {};
+  const std::vector<double> y = demeaned(x);
+  const double T = 1.0 / f0;
+  const std::size_t cycles
+      = std::size_t(std::floor(dt * double(y.size() - 1) / T));
+  const std::size_t n = std::max<std::size_t>(2, std::lround(T / dt));
+  if (cycles < 2)
+    return {};
+  auto at = [&](double t)
+  {
+    const double s = t / dt;
+    const std::size_t k = std::min(std::size_t(s), y.size() - 2);
+    const double w = s - double(k);
+    return (1 - w) * y[k] + w * y[k + 1];
+  };
+  std::vector<double> mean(n, 0.0);
+  for (std::size_t c = 0; c < cycles; ++c)
+    for (std::size_t j = 0; j < n; ++j)
+      mean[j] += at((double(c) + double(j) / double(n)) * T) / double(cycles);
+  if (fraction)
+  {
+    // energy of the cycles resampled, against that of the mean repeated
+    double e_all = 0, e_mean = 0;
+    for (std::size_t c = 0; c < cycles; ++c)
+      for (std::size_t j = 0; j < n; ++j)
+      {
+        const double v = at((double(c) + double(j) / double(n)) * T);
+        e_all += v * v;
+        e_mean += mean[j] * mean[j];
+      }
+    *fraction = e_all > 0 ? e_mean / e_all : NAN;
+  }
+  return mean;
+}

@@ -48,6 +48,17 @@ std::vector<double> lpc_formants(const std::vector<double>& x, double dt,
                                  double f_max = 5000.0, int order = 12,
                                  double max_bandwidth = 500.0);
 
+/// The periodic part of a voiced signal: x (sampled every dt) cut into its
+/// whole periods T = 1/f0 from the start, each resampled to round(T/dt)
+/// points (linear interpolation) and averaged (pitch-synchronous
+/// averaging). What is not periodic at f0 — the free ringing of lightly
+/// damped resonances after a transient, flow noise — averages out; the
+/// harmonics stay. Returns one mean period (empty if x holds fewer than two
+/// periods or f0 is not finite); `fraction` (optional) receives the share
+/// of x's energy (mean removed) the periodic part carries.
+std::vector<double> periodic_part(const std::vector<double>& x, double dt,
+                                  double f0, double* fraction = nullptr);
+
 /// Sound pressure level 20 log10(p_rms / 20 µPa) of x (mean removed)
 double spl_db(const std::vector<double>& x);
 } // namespace fsai::acoustics
