@@ -260,10 +260,12 @@ int main(int argc, char* argv[])
           wall1d = {wave.wall_mass, wave.wall_resistance, wave.wall_stiffness,
                     geo.depth};
         }
+        const fsai::mesh::AreaFunction tract1d
+            = fsai::mesh::resample(tract, true, 5e-4);
         std::vector<double> tract_formants, tract_bandwidths;
-        for (const auto& r : ac::tube_resonances(
-                 fsai::mesh::resample(tract, true, 5e-4), 5000.0, wave.c0,
-                 wave.rho0, ac::LipEnd::flanged, -1.0, wall1d))
+        for (const auto& r :
+             ac::tube_resonances(tract1d, 5000.0, wave.c0, wave.rho0,
+                                 ac::LipEnd::flanged, -1.0, wall1d))
         {
           if (tract_formants.size() < 4)
           {
@@ -277,9 +279,9 @@ int main(int argc, char* argv[])
         ac::GlottalBranch branch{fsai::mesh::voice_subglottal(profile),
                                  vp.subglottal == "absorbing"};
         std::vector<double> domain_formants;
-        for (const auto& r : ac::tube_resonances(
-                 fsai::mesh::resample(tract, true, 5e-4), 5000.0, wave.c0,
-                 wave.rho0, ac::LipEnd::flanged, -1.0, wall1d, branch))
+        for (const auto& r :
+             ac::tube_resonances(tract1d, 5000.0, wave.c0, wave.rho0,
+                                 ac::LipEnd::flanged, -1.0, wall1d, branch))
         {
           if (domain_formants.size() < 4)
             domain_formants.push_back(r.f);

@@ -174,12 +174,15 @@ fsai::acoustics::WaveSolver::WaveSolver(
   auto tags_wall = role_tags(mesh, boundaries.vibrating, "vibrating");
   auto tags_yield = role_tags(mesh, boundaries.yielding, "yielding");
   _tags = {tags_rad, tags_damped, tags_in, tags_wall, tags_yield};
-  int has_yield = boundaries.yielding.empty() ? 0 : 1, any_yield = 0;
-  MPI_Allreduce(&has_yield, &any_yield, 1, MPI_INT, MPI_MAX, mesh->comm());
-  _yielding = any_yield;
-  int has_wall = boundaries.vibrating.empty() ? 0 : 1, any_wall = 0;
-  MPI_Allreduce(&has_wall, &any_wall, 1, MPI_INT, MPI_MAX, mesh->comm());
-  _vibrating = any_wall;
+  // A role is active if any rank has facets of it (collective)
+  auto on_any_rank = [&](const std::vector<std::int32_t>& facets)
+  {
+    int here = facets.empty() ? 0 : 1, any = 0;
+    MPI_Allreduce(&here, &any, 1, MPI_INT, MPI_MAX, mesh->comm());
+    return any != 0;
+  };
+  _yielding = on_any_rank(boundaries.yielding);
+  _vibrating = on_any_rank(boundaries.vibrating);
   using fem::IntegralType;
   auto on = [](const std::shared_ptr<mesh::MeshTags<std::int32_t>>& t)
   {
@@ -262,18 +265,12 @@ fsai::acoustics::WaveSolver::WaveSolver(
       _V->dofmap()->index_map, _V->dofmap()->index_map_bs());
 
   // Fixed source vector of the volume-velocity inlet
-  {
-    _b_assembly->set(0.0);
-    fem::assemble_vector(_b_assembly->mutable_array(), *b_in);
-    _b_assembly->scatter_rev(std::plus<double>());
-    la::petsc::Vector w(la::petsc::create_vector_wrap(*_b_assembly), false);
-    VecCopy(w.vec(), _b_inlet.vec());
-  }
+  assemble_into(*b_in, _b_inlet.vec());
   // Yielding walls (E21 with ∂p/∂n = −ρ0 ü on them): the lumped boundary
   // mass B = ρ0 ∫ φ_i w ds. The wall's Newmark step, solved node by node,
   // makes ü_{n+1} = (p_{n+1} − r ṽ − k ũ)/m_eff, m_eff = m + γΔt r + βΔt² k,
   // and p_{n+1} = p~ + βΔt² p̈_{n+1}: A gains the diagonal B βΔt²/m_eff, the
-  // right-hand side −B (p~ − r ṽ − k ũ)/m_eff (add_wall_load)
+  // right-hand side −B (p~ − r ṽ − k ũ)/m_eff (step)
   _wall_b = like();
   _wall_mask = like();
   _wu = like();
@@ -282,13 +279,10 @@ fsai::acoustics::WaveSolver::WaveSolver(
   _wu_pred = like();
   _wv_pred = like();
   _wall_work = like();
+  _wall_m_eff = _wall_m + _gamma * dt * _wall_r + _beta * dt * dt * _wall_k;
   if (_yielding)
   {
-    _b_assembly->set(0.0);
-    fem::assemble_vector(_b_assembly->mutable_array(), *b_yield);
-    _b_assembly->scatter_rev(std::plus<double>());
-    la::petsc::Vector w(la::petsc::create_vector_wrap(*_b_assembly), false);
-    VecCopy(w.vec(), _wall_b.vec());
+    assemble_into(*b_yield, _wall_b.vec());
     PetscInt n;
     VecGetLocalSize(_wall_b.vec(), &n);
     const PetscScalar* b;
@@ -299,10 +293,8 @@ fsai::acoustics::WaveSolver::WaveSolver(
       mask[i] = b[i] != 0.0 ? 1.0 : 0.0;
     VecRestoreArray(_wall_mask.vec(), &mask);
     VecRestoreArrayRead(_wall_b.vec(), &b);
-    const double m_eff
-        = _wall_m + _gamma * dt * _wall_r + _beta * dt * dt * _wall_k;
     VecCopy(_wall_b.vec(), _work_p.vec());
-    VecScale(_work_p.vec(), _beta * dt * dt / m_eff);
+    VecScale(_work_p.vec(), _beta * dt * dt / _wall_m_eff);
     MatDiagonalSet(_A.mat(), _work_p.vec(), ADD_VALUES);
   }
   double local = fem::assemble_scalar(*measure);
@@ -449,7 +441,10 @@ void fsai::acoustics::WaveSolver::step()
     VecWAXPY(_wu_pred.vec(), dt, _wv.vec(), _wu.vec());
     VecAXPY(_wu_pred.vec(), (0.5 - _beta) * dt * dt, _wa.vec());
     VecWAXPY(_wv_pred.vec(), (1.0 - _gamma) * dt, _wa.vec(), _wv.vec());
-    add_wall_load(_rhs.vec(), _work_p.vec());
+    // rhs −= B (p~ − r ṽ − k ũ)/m_eff
+    wall_acceleration_for(_work_p.vec(), _wall_work.vec());
+    VecPointwiseMult(_wall_work.vec(), _wall_work.vec(), _wall_b.vec());
+    VecAXPY(_rhs.vec(), -1.0, _wall_work.vec());
   }
   if (!_bc_rows.empty())
   {
@@ -480,29 +475,28 @@ void fsai::acoustics::WaveSolver::step()
   if (_yielding)
   {
     // ü = (p − r ṽ − k ũ)/m_eff on the wall nodes, then the correctors
-    const double m_eff
-        = _wall_m + _gamma * dt * _wall_r + _beta * dt * dt * _wall_k;
-    VecCopy(_p_vec.vec(), _wa.vec());
-    VecAXPY(_wa.vec(), -_wall_r, _wv_pred.vec());
-    VecAXPY(_wa.vec(), -_wall_k, _wu_pred.vec());
+    wall_acceleration_for(_p_vec.vec(), _wa.vec());
     VecPointwiseMult(_wa.vec(), _wa.vec(), _wall_mask.vec());
-    VecScale(_wa.vec(), 1.0 / m_eff);
     VecWAXPY(_wu.vec(), _beta * dt * dt, _wa.vec(), _wu_pred.vec());
     VecWAXPY(_wv.vec(), _gamma * dt, _wa.vec(), _wv_pred.vec());
   }
 }
 //-----------------------------------------------------------------------------
-void fsai::acoustics::WaveSolver::add_wall_load(Vec rhs, Vec p)
+void fsai::acoustics::WaveSolver::wall_acceleration_for(Vec p, Vec out) const
 {
-  // rhs −= B (p − r ṽ − k ũ)/m_eff (the predictors are in _wu_pred/_wv_pred)
-  const double m_eff
-      = _wall_m + _gamma * _dt * _wall_r + _beta * _dt * _dt * _wall_k;
-  Vec w = _wall_work.vec();
-  VecCopy(p, w);
-  VecAXPY(w, -_wall_r, _wv_pred.vec());
-  VecAXPY(w, -_wall_k, _wu_pred.vec());
-  VecPointwiseMult(w, w, _wall_b.vec());
-  VecAXPY(rhs, -1.0 / m_eff, w);
+  VecCopy(p, out);
+  VecAXPY(out, -_wall_r, _wv_pred.vec());
+  VecAXPY(out, -_wall_k, _wu_pred.vec());
+  VecScale(out, 1.0 / _wall_m_eff);
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::assemble_into(const Form& L, Vec out)
+{
+  _b_assembly->set(0.0);
+  fem::assemble_vector(_b_assembly->mutable_array(), L);
+  _b_assembly->scatter_rev(std::plus<double>());
+  la::petsc::Vector w(la::petsc::create_vector_wrap(*_b_assembly), false);
+  VecCopy(w.vec(), out);
 }
 //-----------------------------------------------------------------------------
 double fsai::acoustics::WaveSolver::energy() const

@@ -138,8 +138,12 @@ private:
   double _dt, _t = 0.0, _beta, _gamma, _inlet_dudt = 0.0, _inlet_measure = 0.0;
   bool _lighthill, _vibrating = false, _yielding = false;
   double _wall_m, _wall_r, _wall_k; // per unit area
-  /// Subtract the yielding walls' load B (p − r ṽ − k ũ)/m_eff from rhs
-  void add_wall_load(Vec rhs, Vec p);
+  double _wall_m_eff = 1.0;         // m + γΔt r + βΔt² k
+  /// out = (p − r ṽ − k ũ)/m_eff: the walls' ü_{n+1} for the pressure p
+  /// (predictors ũ, ṽ in _wu_pred, _wv_pred), on every dof
+  void wall_acceleration_for(Vec p, Vec out) const;
+  /// Assemble a boundary linear form into the PETSc vector `out`
+  void assemble_into(const Form& L, Vec out);
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V, _Vv, _Vs;
   std::shared_ptr<dolfinx::fem::Function<double>> _p, _v_flow, _taper, _a_wall;
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
