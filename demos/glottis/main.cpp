@@ -16,7 +16,15 @@
 // h, φ, forces, contact force, penetration, closed flag, iterations),
 // glottis.png (g, Q and the spectrum of Q; matplotlib), summary.json (f0_hz,
 // open_quotient, q_peak_m3s, closed_leakage, max_penetration_m, sim_time_s,
-// coupling_iterations_mean, ...).
+// coupling_iterations_mean, ...); fe: coupling.csv, flow.xdmf.
+//
+// Checkpoints (--checkpoint-every N): checkpoint.json (step, time,
+// parameters; bernoulli: the state) and, for fe, checkpoint_<step>.r<rank>.bin
+// with each rank's fields by mesh node (flow and BDF history, mesh motion,
+// fold, IQN-ILS columns). --restart DIR continues in DIR, on any number of
+// ranks: series.csv and
+// coupling.csv keep their rows up to the checkpoint, flow.xdmf its steps
+// up to the checkpoint's time.
 
 #include <common/Parameters.h>
 #include <common/Runtime.h>
@@ -26,17 +34,18 @@
 #include <glottis/BernoulliGlottis.h>
 #include <glottis/FlowGlottis.h>
 #include <glottis/waveform.h>
+#include <io/Checkpointer.h>
 #include <io/CsvWriter.h>
 #include <io/Progress.h>
 #include <io/RunSummary.h>
 #include <io/TimeSeriesWriter.h>
-#include <io/checkpoint.h>
 #include <io/output_dir.h>
 
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <limits>
 
 namespace
 {
@@ -78,10 +87,11 @@ struct SceneParameters
           "bernoulli: linear stability of the static equilibrium at these "
           "p_sub [Pa] (printed, onset.csv) instead of a time run");
     p.add("checkpoint-every", checkpoint_every,
-          "bernoulli: write DIR/checkpoint.json every N steps (0: never)");
+          "write DIR/checkpoint.json (fe: and the fields, one file per "
+          "rank) every N steps (0: never)");
     p.add("restart", restart,
-          "bernoulli: continue the run in this folder from its checkpoint "
-          "(same parameters; --duration may be longer)");
+          "continue the run in this folder from its checkpoint (same "
+          "parameters, any number of ranks; --duration may be longer)");
     p.add("debug.kill_at_step", kill_at_step,
           "testing: kill this process with SIGKILL after step N");
   }
@@ -97,12 +107,6 @@ struct SceneParameters
     fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
     fsai::require(checkpoint_every >= 0, "--checkpoint-every", ">= 0",
                   checkpoint_every);
-    if (flow == "fe" and (checkpoint_every > 0 or !restart.empty()))
-    {
-      throw fsai::InputError("--checkpoint-every/--restart: only with --flow "
-                             "bernoulli (the FE flow state is not "
-                             "checkpointed yet)");
-    }
   }
 };
 } // namespace
@@ -170,6 +174,12 @@ int main(int argc, char* argv[])
           }
           return;
         }
+        // A restart continues from the checkpoint's step (read before the
+        // FE scene is built: its coupling log keeps the rows up to there)
+        fsai::io::Checkpointer ckpt(rt.comm(), sp.output, params.to_json());
+        if (!sp.restart.empty())
+          ckpt.read();
+        const long k0 = ckpt.step();
         std::unique_ptr<fsai::glottis::BernoulliGlottis> reduced;
         std::unique_ptr<fsai::glottis::FlowGlottis> fem;
         std::unique_ptr<fsai::io::TimeSeriesWriter> xdmf;
@@ -180,7 +190,8 @@ int main(int argc, char* argv[])
         {
           fem = std::make_unique<fsai::glottis::FlowGlottis>(
               rt.comm(), profile, vf, cp, fe, setup.fluid, setup.ale,
-              setup.coupling, sp.output + "/coupling.csv");
+              setup.coupling, sp.output + "/coupling.csv",
+              sp.restart.empty() ? std::string::npos : std::size_t(k0));
           fsai::log::info("FE flow: {} cells, {} dofs", fem->cells(),
                           fem->flow_dofs());
           summary.set("flow_dofs", fem->flow_dofs());
@@ -191,7 +202,9 @@ int main(int argc, char* argv[])
                 sp.output + "/flow.xdmf",
                 std::vector<fsai::io::TimeSeriesWriter::Field>{
                     f.velocity(), f.pressure(), f.porous_field(),
-                    fem->motion().displacement()});
+                    fem->motion().displacement()},
+                sp.restart.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                   : ckpt.meta().at("t").get<double>());
           }
         }
         const auto& fold = reduced ? reduced->fold() : fem->fold();
@@ -227,28 +240,23 @@ int main(int argc, char* argv[])
         int its_max = 0;
         int unconverged = 0;
         double loop_wall = 0;
-        // A restart continues from the checkpoint's step: the state it
-        // holds, the series up to that step (later rows are dropped) and
-        // the statistics rebuilt from those rows
-        const std::string ckpt_path = sp.output + "/checkpoint.json";
-        long k0 = 0;
+        // The series up to the checkpoint's step (later rows are dropped)
+        // and the statistics rebuilt from those rows
         std::unique_ptr<fsai::io::CsvWriter> csv;
         if (!sp.restart.empty())
         {
-          const auto ck = fsai::io::read_checkpoint(rt.comm(), ckpt_path);
-          const std::string changed = fsai::io::first_changed_parameter(
-              ck.at("parameters"), params.to_json());
-          if (!changed.empty())
+          const auto& ck = ckpt.meta();
+          if (reduced)
           {
-            throw fsai::InputError("restart: parameter " + changed
-                                   + " differs from the checkpointed run");
+            const auto& st = ck.at("state");
+            reduced->set_state(
+                {st.at("t").get<double>(),
+                 st.at("fold").get<std::array<std::array<double, 2>, 3>>(),
+                 st.at("load").get<std::array<double, 2>>()});
           }
-          k0 = ck.at("step").get<long>();
-          const auto& st = ck.at("state");
-          reduced->set_state(
-              {st.at("t").get<double>(),
-               st.at("fold").get<std::array<std::array<double, 2>, 3>>(),
-               st.at("load").get<std::array<double, 2>>()});
+          else
+            fem->load(ckpt.fields());
+          unconverged = ck.value("coupling_unconverged_steps", 0);
           csv = std::make_unique<fsai::io::CsvWriter>(
               rt.comm(), sp.output + "/series.csv", columns, std::size_t(k0));
           for (const auto& r : csv->kept_rows())
@@ -261,7 +269,7 @@ int main(int argc, char* argv[])
             its_max = std::max(its_max, int(r[11]));
           }
           fsai::log::info("restart from step {} (t = {:.6g} s) of {}", k0,
-                          reduced->time(), ckpt_path);
+                          ck.at("t").get<double>(), sp.output);
           summary.set("restarted_from_step", k0);
         }
         else
@@ -275,7 +283,29 @@ int main(int argc, char* argv[])
           const auto loop0 = std::chrono::steady_clock::now();
           for (long k = k0 + 1; k <= n; ++k)
           {
-            const auto s = reduced ? reduced->step() : fem->step();
+            fsai::glottis::Sample s;
+            try
+            {
+              s = reduced ? reduced->step() : fem->step();
+            }
+            catch (const std::exception& e)
+            {
+              // A failed FE step (coupling not converged, inverted cell,
+              // solver failure): the fields of the last good step are
+              // written for inspection before the error ends the run
+              if (fem)
+              {
+                fem->write_last_good(sp.output + "/last_good.xdmf");
+                throw std::runtime_error(fmt::format(
+                    "{} [step {} failed; the last good state (step {}, t = "
+                    "{:.6g} s) is in {}/last_good.xdmf{}]",
+                    e.what(), k, k - 1, fem->time(), sp.output,
+                    ckpt.fields_stem().empty()
+                        ? ""
+                        : ", the last checkpoint is " + ckpt.fields_stem()));
+              }
+              throw;
+            }
             if (xdmf and k % sp.write_every == 0)
               xdmf->write(s.t);
             csv->row({s.t, s.gap, s.Q, s.h, s.phi, s.lift, s.drag, s.moment,
@@ -290,13 +320,20 @@ int main(int argc, char* argv[])
             unconverged += !s.converged;
             if (sp.checkpoint_every > 0 and k % sp.checkpoint_every == 0)
             {
-              const auto st = reduced->state();
-              nlohmann::json ck{
-                  {"step", k},
-                  {"parameters", params.to_json()},
-                  {"state",
-                   {{"t", st.t}, {"fold", st.fold}, {"load", st.load}}}};
-              fsai::io::write_checkpoint(rt.comm(), ckpt_path, ck);
+              nlohmann::json scalars{
+                  {"coupling_unconverged_steps", unconverged}};
+              if (reduced)
+              {
+                const auto st = reduced->state();
+                scalars["state"]
+                    = {{"t", st.t}, {"fold", st.fold}, {"load", st.load}};
+                ckpt.write(k, s.t, scalars, nullptr);
+              }
+              else
+              {
+                const auto fields = fem->save();
+                ckpt.write(k, s.t, scalars, &fields);
+              }
             }
             if (sp.kill_at_step == k)
               std::raise(SIGKILL);

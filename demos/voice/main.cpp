@@ -40,18 +40,22 @@
 #include <dolfinx/fem/utils.h>
 #include <glottis/FlowGlottis.h>
 #include <glottis/waveform.h>
+#include <io/Checkpointer.h>
 #include <io/CsvWriter.h>
 #include <io/PointProbes.h>
 #include <io/Progress.h>
 #include <io/RunSummary.h>
 #include <io/TimeSeriesWriter.h>
+#include <io/field_state.h>
 #include <io/output_dir.h>
 #include <mesh/area_function.h>
 #include <mesh/voice_domain.h>
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <fmt/ranges.h>
+#include <limits>
 
 namespace
 {
@@ -84,6 +88,9 @@ struct VoiceParameters
   int wav_rate = 44100;
   bool check_result = false;
   double check_f0_tolerance = 0.01; // relative
+  int checkpoint_every = 0;         // steps between checkpoints (0: none)
+  std::string restart;              // run folder to continue
+  int kill_at_step = 0;             // testing: SIGKILL after this step
 
   void bind(fsai::common::Parameters& p)
   {
@@ -139,6 +146,14 @@ struct VoiceParameters
     p.add("check.f0_tolerance", check_f0_tolerance,
           "relative tolerance of --check-result on the sound's f0 (0: not "
           "checked)");
+    p.add("checkpoint-every", checkpoint_every,
+          "write DIR/checkpoint.json and the fields (one file per rank) "
+          "every N steps (0: never)");
+    p.add("restart", restart,
+          "continue the run in this folder from its checkpoint (same "
+          "parameters, any number of ranks; --duration may be longer)");
+    p.add("debug.kill_at_step", kill_at_step,
+          "testing: kill this process with SIGKILL after step N");
   }
   void validate() const
   {
@@ -158,6 +173,8 @@ struct VoiceParameters
     fsai::require(write_every >= 0, "--write_every", ">= 0", write_every);
     fsai::require(wav_rate == 44100 or wav_rate == 48000, "--wav_rate",
                   "44100 or 48000", wav_rate);
+    fsai::require(checkpoint_every >= 0, "--checkpoint-every", ">= 0",
+                  checkpoint_every);
   }
 };
 
@@ -230,10 +247,21 @@ int main(int argc, char* argv[])
         fsai::require(vp.mic_distance < vg.radius, "--mic_distance",
                       "inside the radiation region (< --voice.radius)",
                       vp.mic_distance);
+        if (!vp.restart.empty())
+          vp.output = vp.restart; // continue in the run's own folder
         params.print();
         fsai::io::prepare_output_dir(rt.comm(), vp.output);
         fsai::io::RunSummary summary(rt.comm(), rt.program());
         summary.set_parameters(params.to_json());
+        // A restart continues from the checkpoint's step (read before the
+        // scene is built: its coupling log keeps the rows up to there)
+        fsai::io::Checkpointer ckpt(rt.comm(), vp.output, params.to_json());
+        if (!vp.restart.empty())
+          ckpt.read();
+        const long k0 = ckpt.step();
+        const double t_restart = vp.restart.empty()
+                                     ? std::numeric_limits<double>::quiet_NaN()
+                                     : ckpt.meta().at("t").get<double>();
 
         // 2. The tract: the vowel's area function (or a straight tube),
         // its first part replaced by the flow domain's channel, and the 1D
@@ -298,7 +326,8 @@ int main(int argc, char* argv[])
         // 3. Flow (the glottis scene) and sound on their own meshes
         auto fem = std::make_unique<fsai::glottis::FlowGlottis>(
             rt.comm(), profile, vf, setup.contact, fe, setup.fluid, setup.ale,
-            setup.coupling, vp.output + "/coupling.csv");
+            setup.coupling, vp.output + "/coupling.csv",
+            vp.restart.empty() ? std::string::npos : std::size_t(k0));
         fsai::mesh::MeshData am = [&]
         {
           fsai::common::ScopedTimer t("demo: acoustic mesh");
@@ -389,31 +418,81 @@ int main(int argc, char* argv[])
               vp.output + "/flow.xdmf",
               std::vector<fsai::io::TimeSeriesWriter::Field>{
                   f.velocity(), f.pressure(), f.porous_field(),
-                  fem->motion().displacement()});
+                  fem->motion().displacement()},
+              t_restart);
           sound_xdmf = std::make_unique<fsai::io::TimeSeriesWriter>(
               vp.output + "/acoustic.xdmf",
-              std::vector<fsai::io::TimeSeriesWriter::Field>{sound.pressure()});
+              std::vector<fsai::io::TimeSeriesWriter::Field>{sound.pressure()},
+              t_restart);
         }
 
         // 4. Time loop: flow step (coupled), then one acoustic step
-        fsai::io::CsvWriter csv(rt.comm(), vp.output + "/series.csv",
-                                {"t_s", "gap_m", "Q_m3s", "h_m", "phi_rad",
-                                 "contact_force_N", "p_lips_pa", "p_mic_pa",
-                                 "iterations"});
+        const std::vector<std::string> columns
+            = {"t_s",       "gap_m",    "Q_m3s",
+               "h_m",       "phi_rad",  "contact_force_N",
+               "p_lips_pa", "p_mic_pa", "iterations"};
         const long n = std::lround(vp.duration / vp.dt);
         std::vector<double> t, g, Q, p_mic;
         long its = 0;
         int unconverged = 0;
-        fsai::io::Progress progress("step", double(n), 5.0);
-        std::array<double, 2> qdot_prev = fem->fold().qdot();
         auto v_new = std::make_shared<dolfinx::fem::Function<double>>(
             sound.flow_velocity().function_space());
         auto v_old = std::make_shared<dolfinx::fem::Function<double>>(
             sound.flow_velocity().function_space());
-        const auto loop0 = std::chrono::steady_clock::now();
-        for (long k = 1; k <= n; ++k)
+        const auto v_keys = fsai::io::node_keys(*v_old->function_space());
+        const int v_bs = v_old->function_space()->dofmap()->index_map_bs();
+        // Restart: the flow, the sound, the source's last velocity and the
+        // series up to the checkpoint (later rows dropped)
+        std::unique_ptr<fsai::io::CsvWriter> csv;
+        if (!vp.restart.empty())
         {
-          const auto s = fem->step();
+          fem->load(ckpt.fields());
+          sound.load(ckpt.fields(), "sound.");
+          fsai::io::get_blocks(ckpt.fields(), "voice.v_old",
+                               v_old->x()->mutable_array(), v_bs, v_keys);
+          unconverged = ckpt.meta().value("coupling_unconverged_steps", 0);
+          csv = std::make_unique<fsai::io::CsvWriter>(
+              rt.comm(), vp.output + "/series.csv", columns, std::size_t(k0));
+          for (const auto& r : csv->kept_rows())
+          {
+            t.push_back(r[0]);
+            g.push_back(r[1]);
+            Q.push_back(r[2]);
+            p_mic.push_back(r[7]);
+            its += long(r[8]);
+          }
+          fsai::log::info("restart from step {} (t = {:.6g} s) of {}", k0,
+                          t_restart, vp.output);
+          summary.set("restarted_from_step", k0);
+        }
+        else
+        {
+          csv = std::make_unique<fsai::io::CsvWriter>(
+              rt.comm(), vp.output + "/series.csv", columns);
+        }
+        fsai::io::Progress progress("step", double(n), 5.0);
+        std::array<double, 2> qdot_prev = fem->fold().qdot();
+        const auto loop0 = std::chrono::steady_clock::now();
+        for (long k = k0 + 1; k <= n; ++k)
+        {
+          fsai::glottis::Sample s;
+          try
+          {
+            s = fem->step();
+          }
+          catch (const std::exception& e)
+          {
+            // A failed flow step (coupling, inverted cell, solver): the
+            // last good flow state is written for inspection
+            fem->write_last_good(vp.output + "/last_good.xdmf");
+            throw std::runtime_error(fmt::format(
+                "{} [step {} failed; the last good flow state (step {}, t = "
+                "{:.6g} s) is in {}/last_good.xdmf{}]",
+                e.what(), k, k - 1, fem->time(), vp.output,
+                ckpt.fields_stem().empty()
+                    ? ""
+                    : ", the last checkpoint is " + ckpt.fields_stem()));
+          }
           {
             fsai::common::ScopedTimer timer("demo: sound step");
             if (vp.lighthill)
@@ -462,8 +541,8 @@ int main(int argc, char* argv[])
                 "acoustic pressure is not finite at t = {:.6f} s (step {})",
                 s.t, k));
           }
-          csv.row({s.t, s.gap, s.Q, s.h, s.phi, s.contact_force, p[0], p[1],
-                   double(s.iterations)});
+          csv->row({s.t, s.gap, s.Q, s.h, s.phi, s.contact_force, p[0], p[1],
+                    double(s.iterations)});
           t.push_back(s.t);
           g.push_back(s.gap);
           Q.push_back(s.Q);
@@ -475,6 +554,18 @@ int main(int argc, char* argv[])
             flow_xdmf->write(s.t);
             sound_xdmf->write(s.t);
           }
+          if (vp.checkpoint_every > 0 and k % vp.checkpoint_every == 0)
+          {
+            auto fields = fem->save();
+            sound.save(fields, "sound.");
+            fsai::io::put_blocks(
+                fields, "voice.v_old", v_old->x()->array(), v_bs, v_keys,
+                v_old->function_space()->dofmap()->index_map->size_local());
+            ckpt.write(k, s.t, {{"coupling_unconverged_steps", unconverged}},
+                       &fields);
+          }
+          if (vp.kill_at_step == k)
+            std::raise(SIGKILL);
           progress.update(double(k),
                           fmt::format("t = {:.5f} g = {:+.3e} Q = {:.3e} "
                                       "p_mic = {:+.3e}",

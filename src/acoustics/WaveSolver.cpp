@@ -12,6 +12,7 @@
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/utils.h>
 #include <fsai_forms/acoustics.h>
+#include <io/field_state.h>
 #include <numeric>
 
 using namespace dolfinx;
@@ -543,3 +544,56 @@ std::shared_ptr<fem::Function<double>> fsai::acoustics::absorbing_layer(
   return sigma;
 }
 //-----------------------------------------------------------------------------
+//-----------------------------------------------------------------------------
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::save(io::RankState& state,
+                                       const std::string& prefix) const
+{
+  const auto keys = io::node_keys(*_V);
+  const std::int32_t owned = _V->dofmap()->index_map->size_local();
+  io::put_blocks(state, prefix + "p", _p->x()->array(), 1, keys, owned);
+  auto put = [&](const char* name, const la::petsc::Vector& v)
+  {
+    const PetscScalar* a = nullptr;
+    VecGetArrayRead(v.vec(), &a);
+    io::put_blocks(state, prefix + name, std::span<const double>(a, owned), 1,
+                   keys, owned);
+    VecRestoreArrayRead(v.vec(), &a);
+  };
+  put("p_dot", _v);
+  put("p_ddot", _a);
+  if (_yielding)
+  {
+    put("wall_u", _wu);
+    put("wall_v", _wv);
+    put("wall_a", _wa);
+  }
+  state[prefix + "t"] = {_t};
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::load(const std::vector<io::RankState>& ranks,
+                                       const std::string& prefix)
+{
+  const auto keys = io::node_keys(*_V);
+  const std::int32_t owned = _V->dofmap()->index_map->size_local();
+  io::get_blocks(ranks, prefix + "p", _p->x()->mutable_array(), 1, keys);
+  auto get = [&](const char* name, la::petsc::Vector& v)
+  {
+    PetscScalar* a = nullptr;
+    VecGetArray(v.vec(), &a);
+    io::get_blocks(ranks, prefix + name, std::span<double>(a, owned), 1,
+                   std::span(keys.data(), owned));
+    VecRestoreArray(v.vec(), &a);
+    VecGhostUpdateBegin(v.vec(), INSERT_VALUES, SCATTER_FORWARD);
+    VecGhostUpdateEnd(v.vec(), INSERT_VALUES, SCATTER_FORWARD);
+  };
+  get("p_dot", _v);
+  get("p_ddot", _a);
+  if (_yielding)
+  {
+    get("wall_u", _wu);
+    get("wall_v", _wv);
+    get("wall_a", _wa);
+  }
+  _t = io::state_entry(ranks.at(0), prefix + "t", 1)[0];
+}

@@ -15,6 +15,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
+#include <io/checkpoint.h>
 #include <memory>
 #include <span>
 #include <vector>
@@ -109,6 +110,12 @@ public:
 
   /// Advance by one time step (t → t + Δt)
   void step();
+
+  /// The state after the last step (p', ṗ', p̈', the yielding walls'
+  /// displacement, velocity and acceleration, t) into a checkpoint (by mesh
+  /// node, io/field_state.h) and back from all the checkpoint's ranks
+  void save(io::RankState& state, const std::string& prefix) const;
+  void load(const std::vector<io::RankState>& ranks, const std::string& prefix);
 
   /// Current time [s]
   double time() const { return _t; }

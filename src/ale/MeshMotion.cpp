@@ -13,6 +13,7 @@
 #include <dolfinx/fem/utils.h>
 #include <fmt/format.h>
 #include <fsai_forms/ale.h>
+#include <io/field_state.h>
 #include <mpi.h>
 
 using namespace dolfinx;
@@ -319,13 +320,7 @@ fsai::ale::MeshQuality fsai::ale::MeshMotion::move(double t)
     _d->x()->scatter_fwd();
   }
 
-  // x = X + d at every geometry node (owned and ghost)
-  auto d = _d->x()->array();
-  const int gdim = _mesh->geometry().dim();
-  const int bs = _V->dofmap()->index_map_bs();
-  for (std::size_t i = 0; i < _node_dof.size(); ++i)
-    for (int k = 0; k < gdim; ++k)
-      x[3 * i + k] = _X[3 * i + k] + d[bs * _node_dof[i] + k];
+  place_mesh(); // x = X + d at every geometry node (owned and ghost)
 
   MeshQuality q = mesh_quality(*_mesh, _X);
   if (!std::isfinite(q.min_scaled_jacobian)
@@ -366,3 +361,48 @@ void fsai::ale::MeshMotion::advance()
   _history = std::min(_history + 1, 2);
 }
 //-----------------------------------------------------------------------------
+//-----------------------------------------------------------------------------
+void fsai::ale::MeshMotion::save(io::RankState& state,
+                                 const std::string& prefix) const
+{
+  const auto kn = io::node_keys(*_V), kc = io::cell_keys(*_mesh);
+  const int bs = _V->dofmap()->index_map_bs();
+  const std::int32_t nb
+      = _V->dofmap()->index_map->size_local(),
+      nc = _mesh->topology().index_map(_mesh->topology().dim())->size_local();
+  io::put_blocks(state, prefix + "d", _d->x()->array(), bs, kn, nb);
+  io::put_blocks(state, prefix + "d_n", _d_n, bs, kn, nb);
+  io::put_blocks(state, prefix + "d_nn", _d_nn, bs, kn, nb);
+  io::put_blocks(state, prefix + "J", _J, 1, kc, nc);
+  state[prefix + "history"] = {double(_history)};
+}
+//-----------------------------------------------------------------------------
+void fsai::ale::MeshMotion::load(const std::vector<io::RankState>& ranks,
+                                 const std::string& prefix)
+{
+  const auto kn = io::node_keys(*_V), kc = io::cell_keys(*_mesh);
+  const int bs = _V->dofmap()->index_map_bs();
+  io::get_blocks(ranks, prefix + "d", _d->x()->mutable_array(), bs, kn);
+  io::get_blocks(ranks, prefix + "d_n", _d_n, bs, kn);
+  io::get_blocks(ranks, prefix + "d_nn", _d_nn, bs, kn);
+  io::get_blocks(ranks, prefix + "J", _J, 1, kc);
+  _history = int(io::state_entry(ranks.at(0), prefix + "history", 1)[0]);
+  place_mesh(); // as after the last accepted move
+}
+//-----------------------------------------------------------------------------
+void fsai::ale::MeshMotion::rewind()
+{
+  std::copy(_d_n.begin(), _d_n.end(), _d->x()->mutable_array().begin());
+  place_mesh();
+}
+//-----------------------------------------------------------------------------
+void fsai::ale::MeshMotion::place_mesh()
+{
+  auto d = _d->x()->array();
+  auto x = _mesh->geometry().x();
+  const int gdim = _mesh->geometry().dim();
+  const int bs = _V->dofmap()->index_map_bs();
+  for (std::size_t i = 0; i < _node_dof.size(); ++i)
+    for (int k = 0; k < gdim; ++k)
+      x[3 * i + k] = _X[3 * i + k] + d[bs * _node_dof[i] + k];
+}

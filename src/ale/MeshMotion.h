@@ -17,6 +17,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
+#include <io/checkpoint.h>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -120,6 +121,14 @@ public:
 
   /// Accept the step: d becomes the history for the next velocity()
   void advance();
+  /// Back to the last accepted d and its mesh (after a failed step)
+  void rewind();
+
+  /// The accepted motion (d, its history, the relaxed Jacobians) into a
+  /// checkpoint (by mesh node and cell, io/field_state.h) and back from all
+  /// the checkpoint's ranks; load() also moves the mesh to X + d
+  void save(io::RankState& state, const std::string& prefix) const;
+  void load(const std::vector<io::RankState>& ranks, const std::string& prefix);
 
   /// The mesh displacement d (for output: Warp By Vector in ParaView)
   std::shared_ptr<const dolfinx::fem::Function<double>> displacement() const
@@ -143,8 +152,9 @@ private:
   std::vector<double> _d_n, _d_nn;    // accepted history
   std::vector<double> _det0, _k_size; // reference cell Jacobians, size factor
   std::vector<double> _J; // relaxed cell volume ratios (jacobian stiffening)
-  void assemble();  // k from the stiffening model, then A (reference mesh)
-  int _history = 0; // accepted steps available (0, 1, 2)
+  void assemble();   // k from the stiffening model, then A (reference mesh)
+  void place_mesh(); // x = X + d
+  int _history = 0;  // accepted steps available (0, 1, 2)
   std::shared_ptr<dolfinx::fem::Form<double>> _a;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
   dolfinx::la::petsc::Matrix _A;

@@ -214,6 +214,58 @@ public:
     _omega = std::numeric_limits<double>::quiet_NaN();
   }
   double last_omega() const override { return _omega; }
+  // The columns of the last step (moved into the reuse history by the next
+  // new_step()) and of the reused steps: "iqn.counts" = columns per step
+  // (last step first), "iqn.dr"/"iqn.dx" the columns one after the other
+  void save(fsai::io::RankState& state,
+            const std::string& prefix) const override
+  {
+    std::vector<double> counts{double(_step.size())}, dr, dx;
+    auto add = [&](const std::vector<Column>& step)
+    {
+      for (const Column& c : step)
+      {
+        dr.insert(dr.end(), c.dr.begin(), c.dr.end());
+        dx.insert(dx.end(), c.dx.begin(), c.dx.end());
+      }
+    };
+    add(_step);
+    for (const auto& s : _history)
+    {
+      counts.push_back(double(s.size()));
+      add(s);
+    }
+    state[prefix + "iqn.counts"] = counts;
+    state[prefix + "iqn.dr"] = dr;
+    state[prefix + "iqn.dx"] = dx;
+  }
+  void load(const fsai::io::RankState& state,
+            const std::string& prefix) override
+  {
+    const auto& counts = fsai::io::state_entry(state, prefix + "iqn.counts");
+    const auto& dr = fsai::io::state_entry(state, prefix + "iqn.dr");
+    const auto& dx = fsai::io::state_entry(state, prefix + "iqn.dx");
+    double ncols = 0;
+    for (double c : counts)
+      ncols += c;
+    if (counts.empty() or dr.size() != dx.size()
+        or (ncols > 0 and dr.size() % std::size_t(ncols) != 0))
+      throw fsai::InputError("restart: inconsistent IQN-ILS history");
+    const std::size_t n = ncols > 0 ? dr.size() / std::size_t(ncols) : 0;
+    std::size_t at = 0;
+    auto take = [&](double count)
+    {
+      std::vector<Column> step;
+      for (int j = 0; j < int(count); ++j, at += n)
+        step.push_back({vec(dr.begin() + at, dr.begin() + at + n),
+                        vec(dx.begin() + at, dx.begin() + at + n)});
+      return step;
+    };
+    _step = take(counts[0]);
+    _history.clear();
+    for (std::size_t k = 1; k < counts.size(); ++k)
+      _history.push_back(take(counts[k]));
+  }
 
 private:
   struct Column

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <deque>
+#include <io/checkpoint.h>
 #include <memory>
 #include <mpi.h>
 #include <span>
@@ -60,6 +61,10 @@ public:
       = 0;
   /// Relaxation factor used by the last update (NaN for IQN-ILS updates)
   virtual double last_omega() const = 0;
+  /// What carries over from past time steps, into / from a checkpoint
+  /// (constant and Aitken: nothing, they restart every step)
+  virtual void save(io::RankState&, const std::string&) const {}
+  virtual void load(const io::RankState&, const std::string&) {}
 };
 
 std::unique_ptr<Accelerator> make_accelerator(MPI_Comm comm,

@@ -32,18 +32,21 @@ void fsai::coupling::CouplingParameters::validate() const
 }
 //-----------------------------------------------------------------------------
 fsai::coupling::FixedPointCoupling::FixedPointCoupling(
-    MPI_Comm comm, const CouplingParameters& p, const std::string& csv_path)
+    MPI_Comm comm, const CouplingParameters& p, const std::string& csv_path,
+    std::size_t keep_rows)
     : _comm(comm), _par(p)
 {
   p.validate();
   _acc = make_accelerator(comm, p.accelerator);
   if (!csv_path.empty())
   {
-    _csv = std::make_unique<io::CsvWriter>(
-        comm, csv_path,
-        std::vector<std::string>{"t_s", "iterations", "residual",
-                                 "first_residual", "residual_abs", "converged",
-                                 "omega"});
+    const std::vector<std::string> columns{
+        "t_s",          "iterations", "residual", "first_residual",
+        "residual_abs", "converged",  "omega"};
+    _csv = keep_rows == std::string::npos
+               ? std::make_unique<io::CsvWriter>(comm, csv_path, columns)
+               : std::make_unique<io::CsvWriter>(comm, csv_path, columns,
+                                                 keep_rows);
   }
 }
 //-----------------------------------------------------------------------------

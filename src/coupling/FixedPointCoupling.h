@@ -64,13 +64,27 @@ public:
       = std::function<void(std::span<const double> x, std::span<double> Hx)>;
 
   /// @param[in] csv_path Per-step log (empty: none)
+  /// @param[in] keep_rows Restart: continue the log after its first
+  ///   `keep_rows` rows (the checkpoint's step count); npos: a new log
   FixedPointCoupling(MPI_Comm comm, const CouplingParameters& p,
-                     const std::string& csv_path = "");
+                     const std::string& csv_path = "",
+                     std::size_t keep_rows = std::string::npos);
   ~FixedPointCoupling();
 
   /// Iterate one time step from the predictor x (on return: the last
   /// iterate, whose H the sub-solvers hold)
   StepReport step(double t, std::vector<double>& x, const Map& H);
+
+  /// The accelerator's history from past steps (IQN-ILS reuse) into / from
+  /// a checkpoint
+  void save(io::RankState& state, const std::string& prefix) const
+  {
+    _acc->save(state, prefix);
+  }
+  void load(const io::RankState& state, const std::string& prefix)
+  {
+    _acc->load(state, prefix);
+  }
 
 private:
   MPI_Comm _comm;

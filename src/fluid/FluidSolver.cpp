@@ -12,6 +12,7 @@
 #include <dolfinx/mesh/utils.h>
 #include <fmt/format.h>
 #include <fsai_forms/fluid.h>
+#include <io/field_state.h>
 #include <numeric>
 #include <petscpc.h>
 
@@ -500,6 +501,42 @@ void fsai::fluid::FluidSolver::restore_state()
   back(_saved.v_nn, _v_nn);
   _t = _saved.t;
   _steps = _saved.steps;
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::save(io::RankState& state,
+                                    const std::string& prefix) const
+{
+  // Velocity, its BDF history and the pressure, by mesh node; the mixed
+  // vector up is rebuilt from v and p on load
+  const auto kv = io::node_keys(*_V), kp = io::node_keys(*_Q);
+  const int bs = _V->dofmap()->index_map_bs();
+  const std::int32_t nv = _V->dofmap()->index_map->size_local(),
+                     np = _Q->dofmap()->index_map->size_local();
+  for (const auto& [name, f] :
+       {std::pair{"v", _v}, {"v_n", _v_n}, {"v_nn", _v_nn}})
+    io::put_blocks(state, prefix + name, f->x()->array(), bs, kv, nv);
+  io::put_blocks(state, prefix + "p", _p->x()->array(), 1, kp, np);
+  state[prefix + "t_steps"] = {_t, double(_steps)};
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::load(const std::vector<io::RankState>& ranks,
+                                    const std::string& prefix)
+{
+  const auto kv = io::node_keys(*_V), kp = io::node_keys(*_Q);
+  const int bs = _V->dofmap()->index_map_bs();
+  for (const auto& [name, f] :
+       {std::pair{"v", _v}, {"v_n", _v_n}, {"v_nn", _v_nn}})
+    io::get_blocks(ranks, prefix + name, f->x()->mutable_array(), bs, kv);
+  io::get_blocks(ranks, prefix + "p", _p->x()->mutable_array(), 1, kp);
+  auto up = _up->x()->mutable_array();
+  auto v = _v->x()->array(), p = _p->x()->array();
+  for (std::size_t i = 0; i < _map_v.size(); ++i)
+    up[_map_v[i]] = v[i];
+  for (std::size_t i = 0; i < _map_p.size(); ++i)
+    up[_map_p[i]] = p[i];
+  const auto& ts = io::state_entry(ranks.at(0), prefix + "t_steps", 2);
+  _t = ts[0];
+  _steps = int(ts[1]);
 }
 //-----------------------------------------------------------------------------
 double fsai::fluid::FluidSolver::flow_rate(std::span<const std::int32_t> facets)

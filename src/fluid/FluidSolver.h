@@ -12,6 +12,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
+#include <io/checkpoint.h>
 #include <map>
 #include <memory>
 #include <span>
@@ -111,6 +112,11 @@ public:
   /// iterations repeat a step)
   void save_state();
   void restore_state();
+  /// The accepted state (velocity and pressure, the BDF history, time and
+  /// step count) into a checkpoint (entries prefix + "..."; fields by mesh
+  /// node, io/field_state.h) and back from all the checkpoint's ranks
+  void save(io::RankState& state, const std::string& prefix) const;
+  void load(const std::vector<io::RankState>& ranks, const std::string& prefix);
   /// Flow rate ∫ v·n ds over `facets` (outward n)
   double flow_rate(std::span<const std::int32_t> facets);
 

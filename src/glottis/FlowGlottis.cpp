@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/utils.h>
+#include <io/TimeSeriesWriter.h>
 #include <mesh/glottis_channel.h>
 
 namespace
@@ -104,7 +105,8 @@ fsai::glottis::FlowGlottis::FlowGlottis(
     MPI_Comm comm, const FoldProfile& profile, const TwoDofParameters& vf,
     const ContactParameters& contact, const FlowGlottisParameters& p,
     fluid::FluidParameters fp, const ale::MeshMotionParameters& ap,
-    const coupling::CouplingParameters& cp, const std::string& coupling_csv)
+    const coupling::CouplingParameters& cp, const std::string& coupling_csv,
+    std::size_t coupling_rows_kept)
     : _comm(comm), _profile(profile), _contact(contact), _par(p),
       _fold(profile, vf)
 {
@@ -186,8 +188,8 @@ fsai::glottis::FlowGlottis::FlowGlottis(
   }
   _motion = std::make_unique<ale::MeshMotion>(_mesh.mesh,
                                               _flow->velocity_space(), mb, ap);
-  _loop
-      = std::make_unique<coupling::FixedPointCoupling>(comm, cp, coupling_csv);
+  _loop = std::make_unique<coupling::FixedPointCoupling>(comm, cp, coupling_csv,
+                                                         coupling_rows_kept);
   // Cells that can become porous: reference midpoint within the fold's
   // x-extent, below the attachment band
   const auto& mesh = *_mesh.mesh;
@@ -408,4 +410,63 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
   for (auto& p : surf)
     s.gap = std::min(s.gap, p[1]);
   return s;
+}
+//-----------------------------------------------------------------------------
+fsai::io::RankState fsai::glottis::FlowGlottis::save() const
+{
+  io::RankState state;
+  _flow->save(state, "flow.");
+  _motion->save(state, "ale.");
+  _loop->save(state, "coupling.");
+  const auto f = _fold.state();
+  state["fold.state"] = {f[0][0], f[0][1], f[1][0], f[1][1], f[2][0], f[2][1]};
+  state["glottis.q_history"] = {_q_n[0], _q_n[1], _q_nn[0], _q_nn[1]};
+  state["glottis.t_steps"] = {_t, double(_steps)};
+  return state;
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::FlowGlottis::load(const std::vector<io::RankState>& ranks)
+{
+  // A mismatch on one rank must not leave the others waiting
+  std::string error;
+  try
+  {
+    _flow->load(ranks, "flow.");
+    _motion->load(ranks, "ale.");
+    // The coupling unknowns (h, ℓφ) live on rank 0: its columns come from
+    // the checkpoint's rank 0; the other ranks keep empty columns
+    int rank = 0;
+    MPI_Comm_rank(_comm, &rank);
+    const auto& r0 = ranks.at(0);
+    io::RankState iqn;
+    for (const auto& [name, v] : r0)
+      if (name.rfind("coupling.", 0) == 0)
+        iqn[name]
+            = name.ends_with("counts") or rank == 0 ? v : std::vector<double>();
+    _loop->load(iqn, "coupling.");
+    const auto& f = io::state_entry(r0, "fold.state", 6);
+    _fold.set_state({{{f[0], f[1]}, {f[2], f[3]}, {f[4], f[5]}}});
+    const auto& q = io::state_entry(r0, "glottis.q_history", 4);
+    _q_n = {q[0], q[1]};
+    _q_nn = {q[2], q[3]};
+    const auto& ts = io::state_entry(r0, "glottis.t_steps", 2);
+    _t = ts[0];
+    _steps = int(ts[1]);
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  io::throw_if_any_rank(_comm, error);
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::FlowGlottis::write_last_good(const std::string& path)
+{
+  _flow->restore_state();
+  _motion->rewind();
+  _fold.set_state(_fold.state());
+  io::TimeSeriesWriter xdmf(path,
+                            {_flow->velocity(), _flow->pressure(),
+                             _flow->porous_field(), _motion->displacement()});
+  xdmf.write(_t);
 }

@@ -87,9 +87,23 @@ public:
               const FlowGlottisParameters& p, fluid::FluidParameters fp,
               const ale::MeshMotionParameters& ap,
               const coupling::CouplingParameters& cp,
-              const std::string& coupling_csv);
+              const std::string& coupling_csv,
+              std::size_t coupling_rows_kept = std::string::npos);
   /// One coupled time step
   Sample step();
+  /// The accepted state after the last step (flow, mesh motion, fold,
+  /// coupling history) for a checkpoint (this rank's part); load()
+  /// continues from the parts of all the checkpoint's ranks (the scene
+  /// must be built with the same parameters, on any number of ranks;
+  /// coupling_rows_kept = the checkpoint's step keeps coupling.csv's rows)
+  io::RankState save() const;
+  void load(const std::vector<io::RankState>& ranks);
+  /// After a failed step: flow, mesh and fold back at the last accepted
+  /// step, whose fields (velocity, pressure, porous indicator, mesh
+  /// displacement) are written to the XDMF file `path` for inspection
+  void write_last_good(const std::string& path);
+  /// Time of the last accepted step
+  double time() const { return _t; }
   const TwoDofFold& fold() const { return _fold; }
   fluid::FluidSolver& flow() { return *_flow; }
   const ale::MeshMotion& motion() const { return *_motion; }

@@ -5,9 +5,11 @@
 // on and the parameters of the run, written so that a kill at any moment
 // leaves either the previous or the new checkpoint, never a torn one.
 #pragma once
+#include <map>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace fsai::io
 {
@@ -19,6 +21,36 @@ void write_checkpoint(MPI_Comm comm, const std::string& path,
 /// The checkpoint at `path` on every rank; InputError if it is missing or
 /// not valid JSON
 nlohmann::json read_checkpoint(MPI_Comm comm, const std::string& path);
+
+/// The arrays of a checkpoint that live on each rank (FE fields: the
+/// rank's owned and ghost entries; time-stepping history), keyed by name
+using RankState = std::map<std::string, std::vector<double>>;
+
+/// Every rank writes its `state` to `<stem>.r<rank>.bin` (temporary file,
+/// fsync, rename); throws on every rank if any rank fails (disk full). The
+/// files are only valid with the JSON checkpoint that names `stem`, written
+/// after them, so a kill leaves a consistent pair. FE fields go in with
+/// partition-independent keys (field_state.h).
+void write_rank_state(MPI_Comm comm, const std::string& stem,
+                      const RankState& state);
+
+/// The state in one file written by write_rank_state() (`<stem>.r<k>.bin`),
+/// read on every rank of `comm`; InputError on every rank if it is missing
+/// or truncated on any
+RankState read_rank_state_file(MPI_Comm comm, const std::string& path);
+
+/// Remove this rank's `<stem>.r<rank>.bin` (an older checkpoint's)
+void remove_rank_state(MPI_Comm comm, const std::string& stem);
+
+/// `state[name]`, which must have `size` entries (SIZE_MAX: any); throws
+/// InputError naming the entry otherwise (a restart with another mesh)
+const std::vector<double>& state_entry(const RankState& state,
+                                       const std::string& name,
+                                       std::size_t size = std::size_t(-1));
+
+/// Throw InputError on every rank if `error` is not empty on any rank (the
+/// lowest such rank's message): restores that fail on one rank only
+void throw_if_any_rank(MPI_Comm comm, const std::string& error);
 
 /// Parameters that may differ between a run and its restart (output,
 /// restart and checkpoint options, the simulated duration) are removed;

@@ -50,6 +50,9 @@ void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
         "modified Newton: reuse the factorised Jacobian while it converges");
   p.add("solid.newton_reuse_rate", newton_reuse_rate,
         "modified Newton: refactorise when |du| shrinks by less than this");
+  p.add("solid.newton_warm_start", newton_warm_start,
+        "a repeated step (coupling iteration) starts Newton from the last "
+        "iteration's solution");
 }
 //-----------------------------------------------------------------------------
 void fsai::structure::SolidParameters::validate() const
@@ -302,10 +305,17 @@ int fsai::structure::ElasticSolver::step()
   cp(*_u, *_u_n);
   cp(*_v, *_v_n);
   cp(*_a, *_a_n);
+  if (!_guess.empty())
+  {
+    // Warm start: the solution of the previous coupling iteration
+    std::copy(_guess.begin(), _guess.end(), _u->x()->mutable_array().begin());
+    _guess.clear();
+  }
   _dynamic->value[0] = 1.0;
   _load->value[0] = 1.0;
   _t += _dt;
   const int its = newton("dynamic step");
+  _stepped = true;
 
   // Newmark update (E18): a = (u − ũ)/(βΔt²), v = v_n + Δt((1−γ)a_n + γa)
   const double b = _p.newmark_beta, g = _p.newmark_gamma, dt = _dt;
@@ -345,12 +355,16 @@ void fsai::structure::ElasticSolver::save_state()
   for (auto& f : {_u, _v, _a})
     _saved.insert(_saved.end(), f->x()->array().begin(), f->x()->array().end());
   _saved.push_back(_t);
+  _guess.clear();
+  _stepped = false;
 }
 //-----------------------------------------------------------------------------
 void fsai::structure::ElasticSolver::restore_state()
 {
   if (_saved.empty())
     throw std::runtime_error("solid: restore_state without save_state");
+  if (_p.newton_warm_start and _stepped)
+    _guess.assign(_u->x()->array().begin(), _u->x()->array().end());
   std::size_t off = 0;
   for (auto& f : {_u, _v, _a})
   {

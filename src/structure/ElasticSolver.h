@@ -57,6 +57,11 @@ struct SolidParameters
   /// state is the same to the Newton tolerance
   bool newton_reuse = false;
   double newton_reuse_rate = 0.25;
+  /// A step repeated after restore_state() (coupling iterations) starts
+  /// Newton from the previous iteration's solution instead of u_n: the
+  /// loads differ by the coupling residual only, so one Newton iteration
+  /// fewer; the converged state is the same to the Newton tolerance
+  bool newton_warm_start = true;
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
@@ -90,7 +95,8 @@ public:
   /// equal increments of the load factor; returns total Newton iterations
   int solve_static(int load_steps = 1);
 
-  /// Keep / go back to the state at the start of the step (coupling)
+  /// Keep / go back to the state at the start of the step (coupling; with
+  /// newton_warm_start the repeated step starts from the last solution)
   void save_state();
   void restore_state();
 
@@ -148,6 +154,8 @@ private:
   bool _J_stale = true;    ///< modified Newton: refactorise before the next
                            ///< solve
   std::vector<double> _saved;
+  std::vector<double> _guess; // warm start of a repeated step (Newton)
+  bool _stepped = false;      // a step was taken since save_state()
   dolfinx::la::petsc::KrylovSolver _solver;
 };
 } // namespace fsai::structure

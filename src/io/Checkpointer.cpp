@@ -1,0 +1,52 @@
+// Copyright (C) 2026 fsai developers
+#include "Checkpointer.h"
+#include "../common/errors.h"
+#include "../common/timer.h"
+#include "field_state.h"
+#include <fmt/format.h>
+
+fsai::io::Checkpointer::Checkpointer(MPI_Comm comm, std::string dir,
+                                     nlohmann::json parameters)
+    : _comm(comm), _dir(std::move(dir)), _parameters(std::move(parameters))
+{
+}
+
+void fsai::io::Checkpointer::read()
+{
+  _meta = read_checkpoint(_comm, _dir + "/checkpoint.json");
+  const std::string changed
+      = first_changed_parameter(_meta.at("parameters"), _parameters);
+  if (!changed.empty())
+  {
+    throw InputError("restart: parameter " + changed
+                     + " differs from the checkpointed run");
+  }
+  _stem = _meta.value("fields", std::string());
+  if (!_stem.empty())
+    _fields = read_all_rank_states(_comm, _dir + "/" + _stem,
+                                   _meta.at("mpi_size").get<int>());
+}
+
+void fsai::io::Checkpointer::write(long step, double t,
+                                   const nlohmann::json& scalars,
+                                   const RankState* fields)
+{
+  common::ScopedTimer timer("io: checkpoint");
+  int size = 1;
+  MPI_Comm_size(_comm, &size);
+  nlohmann::json meta = scalars;
+  meta["step"] = step;
+  meta["t"] = t;
+  meta["mpi_size"] = size;
+  meta["parameters"] = _parameters;
+  const std::string previous = _stem;
+  if (fields)
+  {
+    _stem = fmt::format("checkpoint_{}", step);
+    write_rank_state(_comm, _dir + "/" + _stem, *fields);
+    meta["fields"] = _stem;
+  }
+  write_checkpoint(_comm, _dir + "/checkpoint.json", meta);
+  if (!previous.empty() and previous != _stem)
+    remove_rank_state(_comm, _dir + "/" + previous);
+}
