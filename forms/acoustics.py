@@ -74,6 +74,18 @@ L_source = -inner(divT_w, grad(q)) * dx
 L_wall = -rho0 * dot(a_wall, n) * q * w * ds(1)
 b_inlet = rho0 * q * w * ds(1)
 
+# Region of varying cross-section (dx(1) bound at run time to its cells):
+# in a Webster-type model the local cross-section A(x) multiplies both
+# terms, ∂/∂x(A ∂p/∂x) = (A/c0²) p̈, so a slit whose width is κ times the
+# mesh's has its mass and stiffness scaled by κ (fsai_demo: the acoustic
+# glottis follows the flow's gap). The forms give the change from κ = 1:
+# a_section adds to the Newmark matrix M + βΔt² K, k_section to K.
+kappa = ufl.Coefficient(ufl.FunctionSpace(mesh, DG0))  # section scale κ
+bdt2 = ufl.Constant(mesh)                              # βΔt² [s²]
+a_section = ((kappa - 1) * ((1 / c0**2) * p * q + bdt2 * inner(grad(p), grad(q)))
+             * w * dx(1))
+k_section = (kappa - 1) * inner(grad(p), grad(q)) * w * dx(1)
+
 # Weighted measure of the facets bound to ds(1) (inlet area / 2π, or width)
 one = ufl.Constant(mesh)
 boundary_measure = one * w * ds(1)
@@ -88,4 +100,5 @@ for i in range(dim()):
     p_exact = p_exact * cos(pi * x[i])
 error_L2 = (ph - p_exact) ** 2 * dx(metadata={"quadrature_degree": 2 * degree() + 4})
 
-forms = [m, c, k, L_source, L_wall, b_inlet, boundary_measure, error_L2]
+forms = [m, c, k, L_source, L_wall, b_inlet, boundary_measure, error_L2,
+         a_section, k_section]

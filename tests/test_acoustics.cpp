@@ -17,6 +17,7 @@
 #include <fsai_forms/acoustics.h>
 #include <fstream>
 #include <functional>
+#include <io/PointProbes.h>
 #include <mesh/area_function.h>
 #include <mesh/vocal_tract.h>
 #include <xtensor/xview.hpp>
@@ -226,6 +227,91 @@ TEST_CASE("Yielding walls of mass m: f_n^2 = f_n,rigid^2 + f_w^2",
     CHECK(r1d[n - 1].f == Approx(exact(n)).epsilon(1e-3));
     CHECK(fe[n - 1] == Approx(exact(n)).epsilon(5e-3));
   }
+}
+
+TEST_CASE("Varying section: a closed slab closes the tube, kappa = 1 is "
+          "the plain solver",
+          "[acoustics][mpi]")
+{
+  // A closed–open tube (rigid at x = 0, p' = 0 at x = L) whose cells in the
+  // slab x ∈ [x1, x2] take the section scale κ (WaveBoundaries::
+  // section_cells, E21 with mass and stiffness scaled by κ). κ = 1e-3
+  // closes the tube at the slab: the part beyond it resonates as a
+  // closed–open tube of length L − x2, f1 = c0 / 4 (L − x2) (the part
+  // before it, closed at both ends, has its first mode at c0 / 2 x1, far
+  // above). κ = 1 must give the plain solver's pressure history.
+  namespace ac = fsai::acoustics;
+  const double L = 0.175, A = 3e-4, c0 = 343.0, x1 = 0.06, x2 = 0.07;
+  fsai::mesh::VocalTractGeometry g;
+  g.h = 0.004;
+  g.open = false;
+  auto m = fsai::mesh::vocal_tract(MPI_COMM_WORLD,
+                                   fsai::mesh::uniform_tube(L, A), g);
+  const int tdim = m.mesh->topology().dim();
+  const std::int32_t nc = m.mesh->topology().index_map(tdim)->size_local();
+  const auto x = m.mesh->geometry().x();
+  const auto& xdofs = m.mesh->geometry().dofmap();
+  std::vector<std::int32_t> slab;
+  for (std::int32_t c = 0; c < nc; ++c)
+  {
+    double xm = 0;
+    for (auto v : xdofs.links(c))
+      xm += x[3 * v] / double(xdofs.links(c).size());
+    if (xm > x1 and xm < x2)
+      slab.push_back(c);
+  }
+  ac::WaveParameters wave;
+  const double dt = 2e-5;
+  auto run = [&](double kappa, bool section)
+  {
+    ac::WaveBoundaries b;
+    b.pressure_release = m.facet_tags->find(m.facet_tag("lips"));
+    if (section)
+      b.section_cells = slab;
+    ac::WaveSolver s(m.mesh, 1, false, wave, b, dt, nullptr, false);
+    if (section)
+      s.section_scale().x()->set(kappa);
+    // Initial state: a smooth bump beyond the slab, at rest
+    auto p0 = std::make_shared<dolfinx::fem::Function<double>>(
+        s.pressure()->function_space());
+    p0->interpolate(
+        [](auto& X) -> xt::xarray<double>
+        {
+          xt::xarray<double> v = xt::zeros<double>({X.shape(1)});
+          for (std::size_t i = 0; i < X.shape(1); ++i)
+            v(i) = std::exp(-std::pow((X(0, i) - 0.12) / 0.01, 2));
+          return v;
+        });
+    s.set_initial_state(*p0);
+    fsai::io::PointProbes probe(m.mesh, {{0.1, 0.0, 0.0}});
+    std::vector<double> series;
+    for (int k = 0; k < 2500; ++k)
+    {
+      s.step();
+      series.push_back(probe.values(*s.pressure())[0]);
+    }
+    return series;
+  };
+  const auto plain = run(1.0, false), same = run(1.0, true);
+  double diff = 0, scale = 0;
+  for (std::size_t i = 0; i < plain.size(); ++i)
+  {
+    diff = std::max(diff, std::abs(same[i] - plain[i]));
+    scale = std::max(scale, std::abs(plain[i]));
+  }
+  CHECK(diff <= 1e-12 * scale);
+  const auto closed = run(1e-3, true);
+  auto [f, a] = ac::amplitude_spectrum(closed, dt, 8);
+  auto peaks = ac::find_peaks(f, a, 100.0, 2000.0);
+  REQUIRE(!peaks.empty());
+  const double exact = c0 / (4 * (L - x2)), open = c0 / (4 * L);
+  fsai::log::info("Varying section: kappa = 1 vs plain solver {:.1e} of the "
+                  "peak; slab closed (kappa = 1e-3): f1 {:.1f} Hz, closed "
+                  "tube beyond the slab {:.1f} Hz ({:+.2f} %), whole tube "
+                  "{:.1f} Hz",
+                  diff / scale, peaks[0].f, exact,
+                  100 * (peaks[0].f - exact) / exact, open);
+  CHECK(peaks[0].f == Approx(exact).epsilon(0.02));
 }
 
 TEST_CASE("1D model with a glottal branch: a split tube is one tube",

@@ -22,9 +22,9 @@
 // parameters; bernoulli: the state) and, for fe, checkpoint_<step>.r<rank>.bin
 // with each rank's fields by mesh node (flow and BDF history, mesh motion,
 // fold, IQN-ILS columns). --restart DIR continues in DIR, on any number of
-// ranks: series.csv and
-// coupling.csv keep their rows up to the checkpoint, flow.xdmf its steps
-// up to the checkpoint's time.
+// ranks: series.csv and coupling.csv keep their rows up to the checkpoint,
+// flow.xdmf its steps up to the checkpoint's time. A failed FE step writes
+// the last good step's fields to last_good.xdmf.
 
 #include <common/Parameters.h>
 #include <common/Runtime.h>

@@ -38,6 +38,7 @@
 #include <common/log.h>
 #include <common/timer.h>
 #include <dolfinx/fem/utils.h>
+#include <glottis/BernoulliFlow.h>
 #include <glottis/FlowGlottis.h>
 #include <glottis/waveform.h>
 #include <io/Checkpointer.h>
@@ -79,6 +80,9 @@ struct VoiceParameters
   bool lighthill = true;      // Lighthill's source on
   bool wall = true;           // vibrating fold surface on
   bool source_average = true; // Lighthill velocity at the step midpoint
+  // The acoustic glottis follows the flow's gap (off: it made the default
+  // [u] unstable, README "Acoustic glottis")
+  bool glottis_section = false;
   double taper_start = 0.02;  // ramp from here before the flow outlet [m]
   double taper_end = 0.005;   // to zero here before the outlet [m]
   double taper_inlet = 0.005; // ramp up over this length after the inlet [m]
@@ -125,6 +129,11 @@ struct VoiceParameters
           "Lighthill's source (false: the fold surface's vibration only)");
     p.add("voice.wall", wall,
           "vibrating fold surface (false: Lighthill's source only)");
+    p.add("voice.glottis_section", glottis_section,
+          "experimental: the acoustic glottis (fixed at the rest gap) "
+          "follows the flow's gap: mass, stiffness and sources of the cells "
+          "under the fold scaled by the current / rest height of the fold "
+          "surface above them (unstable in the default run, see README)");
     p.add("voice.source_average", source_average,
           "Lighthill's source from (v_n + v_n+1)/2 (false: v_n+1)");
     p.add("voice.taper_start", taper_start,
@@ -177,6 +186,23 @@ struct VoiceParameters
                   checkpoint_every);
   }
 };
+
+/// Height of the polyline `surface` (points ordered along x) above x: the
+/// lowest crossing of the vertical line at x (+∞ if none)
+double surface_height(const std::vector<std::array<double, 2>>& surface,
+                      double x)
+{
+  double y = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < surface.size(); ++i)
+  {
+    const auto& a = surface[i];
+    const auto& b = surface[i + 1];
+    if ((x - a[0]) * (x - b[0]) > 0 or a[0] == b[0])
+      continue;
+    y = std::min(y, a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0]));
+  }
+  return y;
+}
 
 /// Taper χ of Lighthill's source (P1 nodal values): 1 inside the flow
 /// domain, cos² ramps to 0 towards the inlet and before the outlet
@@ -359,6 +385,50 @@ int main(int argc, char* argv[])
                                          and std::abs(x[0] - x_step) > 1e-9;
                                 });
         }
+        // The acoustic domain is fixed with the glottis at rest; its cells
+        // under the fold surface (the glottal slit and the gap beside the
+        // fold) take the flow's cross-section: κ = current / rest height of
+        // the fold surface above each cell (Webster: the section scales
+        // mass and stiffness), so the acoustic glottis closes when the
+        // fold does. Without it the rest slit stays open and the domain's
+        // F1 is that of a tract open at both ends through the glottis
+        std::vector<std::int32_t> section_cells;
+        std::vector<std::array<double, 2>> section_mid;
+        const auto rest = fsai::glottis::moved_surface(
+            profile, fsai::glottis::RigidMotion(0, 0, {0, 0}));
+        // κ at x for the moved surface `now` (1 outside the fold's extent)
+        auto section_scale
+            = [&](double x, const std::vector<std::array<double, 2>>& now)
+        {
+          if (x <= 0 or x >= geo.fold_length)
+            return 1.0;
+          return std::clamp(surface_height(now, x) / surface_height(rest, x),
+                            1e-3, 10.0);
+        };
+        if (vp.glottis_section)
+        {
+          const int tdim = am.mesh->topology().dim();
+          const std::int32_t nc
+              = am.mesh->topology().index_map(tdim)->size_local();
+          const auto x = am.mesh->geometry().x();
+          const auto& xdofs = am.mesh->geometry().dofmap();
+          for (std::int32_t c = 0; c < nc; ++c)
+          {
+            std::array<double, 2> m{0, 0};
+            for (auto v : xdofs.links(c))
+              for (int k = 0; k < 2; ++k)
+                m[k] += x[3 * v + k] / double(xdofs.links(c).size());
+            if (m[0] <= 0 or m[0] >= geo.fold_length)
+              continue;
+            const double yr = surface_height(rest, m[0]);
+            if (m[1] < yr)
+            {
+              section_cells.push_back(c);
+              section_mid.push_back(m);
+            }
+          }
+          wb.section_cells = section_cells;
+        }
         wb.radiation = facets("radiation");
         wb.radiation_beta = 0.5 / (vg.radius + vg.layer); // planar: 1/(2R)
         wb.vibrating = facets("fold");
@@ -385,6 +455,12 @@ int main(int argc, char* argv[])
         summary.set("domain_formants_hz", domain_formants);
 
         // Source transfer and taper; the fold's surface nodes
+        struct SectionNode
+        {
+          std::size_t i;
+          double x, chi0;
+        };
+        std::vector<SectionNode> taper_section;
         ac::FlowSource source(rt.comm(), *fem->flow().velocity_space(),
                               fem->reference_coordinates(),
                               *sound.flow_velocity().function_space());
@@ -395,7 +471,16 @@ int main(int argc, char* argv[])
           const double x_in = -geo.inlet_length,
                        x_out = geo.fold_length + geo.outlet_length;
           for (std::size_t i = 0; i < c.size(); ++i)
+          {
             c[i] = source_taper(X[3 * i], x_in, x_out, vp);
+            // Nodes under (or on) the fold surface: with the varying
+            // section the source there scales with κ too (Webster: the
+            // source per unit length is the section times that per volume)
+            if (vp.glottis_section and X[3 * i] > 0
+                and X[3 * i] < geo.fold_length
+                and X[3 * i + 1] <= surface_height(rest, X[3 * i]) + 1e-12)
+              taper_section.push_back({i, X[3 * i], c[i]});
+          }
         }
         const auto Va = sound.wall_acceleration().function_space();
         const auto fold_dofs
@@ -523,11 +608,31 @@ int main(int argc, char* argv[])
                 = {(fold.qdot()[0] - qdot_prev[0]) / vp.dt,
                    (fold.qdot()[1] - qdot_prev[1]) / vp.dt};
             qdot_prev = fold.qdot();
+            // The acoustic glottis at the fold's current section: κ of the
+            // cells under the fold (clamped to [1e-3, 10]: closed keeps a
+            // thousandth of the rest section, not a singular matrix), and
+            // the loads entering there scaled alike (the wall's normal
+            // flux and Lighthill's source, as the κ-weighted weak form has
+            // them), else a closing fold would pump the near-zero volume
+            std::vector<std::array<double, 2>> now;
+            if (vp.glottis_section)
+            {
+              now = fsai::glottis::moved_surface(profile, m);
+              auto kappa = sound.section_scale().x()->mutable_array();
+              for (std::size_t i = 0; i < section_cells.size(); ++i)
+                kappa[section_cells[i]] = section_scale(section_mid[i][0], now);
+              auto chi = sound.taper().x()->mutable_array();
+              for (const auto& n : taper_section)
+                chi[n.i] = n.chi0 * section_scale(n.x, now);
+            }
             auto a = sound.wall_acceleration().x()->mutable_array();
             for (std::size_t i = 0; vp.wall and i < fold_dofs.size(); ++i)
             {
               const auto d = m.derivatives(fold_X[i]);
-              const double w = profile.weight(fold_X[i]);
+              const double w
+                  = profile.weight(fold_X[i])
+                    * (vp.glottis_section ? section_scale(fold_X[i][0], now)
+                                          : 1.0);
               for (int c = 0; c < 2; ++c)
                 a[2 * fold_dofs[i] + c]
                     = w * (d[0][c] * qdd[0] + d[1][c] * qdd[1]);

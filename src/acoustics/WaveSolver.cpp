@@ -113,7 +113,8 @@ fsai::acoustics::WaveSolver::WaveSolver(
       _work_p(nullptr, false), _work_v(nullptr, false), _wall_b(nullptr, false),
       _wall_mask(nullptr, false), _wu(nullptr, false), _wv(nullptr, false),
       _wa(nullptr, false), _wu_pred(nullptr, false), _wv_pred(nullptr, false),
-      _wall_work(nullptr, false), _solver(mesh->comm())
+      _wall_work(nullptr, false), _A0(nullptr, false), _D_a(nullptr, false),
+      _D_k(nullptr, false), _solver(mesh->comm())
 {
   common::ScopedTimer timer("acoustics: setup");
   params.validate();
@@ -302,8 +303,48 @@ fsai::acoustics::WaveSolver::WaveSolver(
   MPI_Allreduce(&local, &_inlet_measure, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
   t_assemble.stop();
 
+  // Varying section (E21 with mass and stiffness scaled by κ in the
+  // section cells): A0 = the matrix above, D_a, D_k the changes from κ = 1,
+  // assembled over those cells only and added every step
+  {
+    int here = boundaries.section_cells.empty() ? 0 : 1, any = 0;
+    MPI_Allreduce(&here, &any, 1, MPI_INT, MPI_MAX, mesh->comm());
+    _section = any != 0;
+  }
+  if (_section)
+  {
+    std::vector<std::int32_t> cells = boundaries.section_cells;
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    std::vector<std::int32_t> ones(cells.size(), 1);
+    auto tags = std::make_shared<mesh::MeshTags<std::int32_t>>(
+        mesh, tdim, std::move(cells), std::move(ones));
+    _tags.push_back(tags);
+    _kappa = std::make_shared<fem::Function<double>>(
+        std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+            acoustic_forms::functionspace_a_section(tdim, degree), "kappa",
+            mesh_nc)));
+    _kappa->x()->set(1.0);
+    Constants cs = constants;
+    cs["bdt2"] = constant(_beta * dt * dt);
+    const std::map<IntegralType, const mesh::MeshTags<int>*> sd{
+        {IntegralType::cell, tags.get()}};
+    _a_section = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+        acoustic_forms::a_section(tdim, degree), {_V, _V}, {{"kappa", _kappa}},
+        cs, sd, mesh_nc));
+    _k_section = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+        acoustic_forms::k_section(tdim, degree), {_V, _V}, {{"kappa", _kappa}},
+        cs, sd, mesh_nc));
+    _D_a = assemble(*_a_section);
+    _D_k = assemble(*_k_section);
+    Mat A0;
+    MatDuplicate(_A.mat(), MAT_COPY_VALUES, &A0);
+    _A0 = la::petsc::Matrix(A0, false);
+  }
+
   // Linear solver: the factorisation is computed at the first solve and
-  // reused while the operator does not change
+  // reused while the operator does not change (with a varying section it
+  // changes every step: 1.7k unknowns in fsai_demo, refactorised each time)
   common::configure_direct_solver(_solver.ksp(), mesh->comm(), tdim);
   _solver.set_options_prefix("acoustic_");
   _solver.set_from_options();
@@ -316,6 +357,39 @@ fem::Function<double>& fsai::acoustics::WaveSolver::flow_velocity()
 }
 //-----------------------------------------------------------------------------
 fem::Function<double>& fsai::acoustics::WaveSolver::taper() { return *_taper; }
+//-----------------------------------------------------------------------------
+fem::Function<double>& fsai::acoustics::WaveSolver::section_scale()
+{
+  if (!_kappa)
+    throw std::runtime_error("acoustics: no section cells were given");
+  return *_kappa;
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::update_section()
+{
+  common::ScopedTimer t("acoustics: section update");
+  for (auto [form, D] :
+       {std::pair{_a_section.get(), &_D_a}, std::pair{_k_section.get(), &_D_k}})
+  {
+    MatZeroEntries(D->mat());
+    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(D->mat(), ADD_VALUES),
+                         *form, {});
+    MatAssemblyBegin(D->mat(), MAT_FINAL_ASSEMBLY);
+    MatAssemblyEnd(D->mat(), MAT_FINAL_ASSEMBLY);
+  }
+  // Pressure-release rows keep p̈ = 0: no change on them
+  {
+    auto map = _V->dofmap()->index_map;
+    std::vector<std::int64_t> global(_bc_rows.size());
+    map->local_to_global(_bc_rows, global);
+    std::vector<PetscInt> rows(global.begin(), global.end());
+    MatZeroRowsColumns(_D_a.mat(), PetscInt(rows.size()), rows.data(), 0.0,
+                       nullptr, nullptr);
+  }
+  MatCopy(_A0.mat(), _A.mat(), SAME_NONZERO_PATTERN);
+  MatAXPY(_A.mat(), 1.0, _D_a.mat(), SUBSET_NONZERO_PATTERN);
+  _solver.set_operator(_A.mat());
+}
 //-----------------------------------------------------------------------------
 fem::Function<double>& fsai::acoustics::WaveSolver::wall_acceleration()
 {
@@ -436,6 +510,13 @@ void fsai::acoustics::WaveSolver::step()
   VecAXPY(_rhs.vec(), -1.0, tmp);
   MatMult(_K.mat(), _work_p.vec(), tmp);
   VecAXPY(_rhs.vec(), -1.0, tmp);
+  if (_section)
+  {
+    // κ of the new time: K(κ) p~ = (K + D_k) p~, A = A0 + D_a
+    update_section();
+    MatMult(_D_k.mat(), _work_p.vec(), tmp);
+    VecAXPY(_rhs.vec(), -1.0, tmp);
+  }
   if (_yielding)
   {
     // Wall predictors ũ = u + Δt u̇ + (½ − β)Δt² ü, ṽ = u̇ + (1 − γ)Δt ü

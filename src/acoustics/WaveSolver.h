@@ -68,6 +68,10 @@ struct WaveBoundaries
   /// m ü + r u̇ + k u = p' (WaveParameters::wall_*): the wall losses that
   /// give the tract's resonances their bandwidths
   std::vector<std::int32_t> yielding;
+  /// Cells (local indices) of a region whose cross-section may differ from
+  /// the mesh's by a factor κ(x, t) (section_scale()): mass and stiffness
+  /// scaled by κ there (Webster), the effective matrix rebuilt every step
+  std::vector<std::int32_t> section_cells;
 };
 
 /// Newmark solver for E21 on a fixed mesh. Usage per step: set the source
@@ -107,6 +111,9 @@ public:
   dolfinx::fem::Function<double>& taper();
   /// Wall acceleration a (P1 vector) on the vibrating boundary
   dolfinx::fem::Function<double>& wall_acceleration();
+  /// Section scale κ (DG0, 1 by default) of the section_cells at the next
+  /// step (WaveBoundaries::section_cells)
+  dolfinx::fem::Function<double>& section_scale();
 
   /// Advance by one time step (t → t + Δt)
   void step();
@@ -166,6 +173,14 @@ private:
   dolfinx::la::petsc::Vector _wall_b, _wall_mask, _wu, _wv, _wa, _wu_pred,
       _wv_pred, _wall_work;
   std::unique_ptr<dolfinx::la::Vector<double>> _b_assembly;
+  // Varying section: κ, the forms of the change from κ = 1, their
+  // matrices, and the effective matrix without the change
+  bool _section = false;
+  std::shared_ptr<dolfinx::fem::Function<double>> _kappa;
+  std::shared_ptr<Form> _a_section, _k_section;
+  dolfinx::la::petsc::Matrix _A0, _D_a, _D_k;
+  /// A = A0 + D_a(κ), D_k(κ) for the step's right-hand side
+  void update_section();
   dolfinx::la::petsc::KrylovSolver _solver;
 };
 
