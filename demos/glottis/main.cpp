@@ -43,7 +43,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdlib>
 #include <limits>
 
@@ -62,9 +61,7 @@ struct SceneParameters
   double stats_from = 0.5; // statistics over t ≥ stats_from · duration
   int write_every = 50;    // fe: XDMF every N steps (0: none)
   std::vector<double> onset_sweep; // p_sub values for the stability sweep
-  int checkpoint_every = 0;        // steps between checkpoints (0: none)
-  std::string restart;             // run folder to continue
-  int kill_at_step = 0;            // testing: SIGKILL after this step
+  fsai::io::RestartOptions run;    // checkpoints and restarts
 
   void bind(fsai::common::Parameters& p)
   {
@@ -86,14 +83,7 @@ struct SceneParameters
     p.add("onset_sweep", onset_sweep,
           "bernoulli: linear stability of the static equilibrium at these "
           "p_sub [Pa] (printed, onset.csv) instead of a time run");
-    p.add("checkpoint-every", checkpoint_every,
-          "write DIR/checkpoint.json (fe: and the fields, one file per "
-          "rank) every N steps (0: never)");
-    p.add("restart", restart,
-          "continue the run in this folder from its checkpoint (same "
-          "parameters, any number of ranks; --duration may be longer)");
-    p.add("debug.kill_at_step", kill_at_step,
-          "testing: kill this process with SIGKILL after step N");
+    run.bind(p);
   }
   void validate() const
   {
@@ -105,8 +95,7 @@ struct SceneParameters
     fsai::require(separation_ratio >= 1, "--bernoulli.separation_ratio", ">= 1",
                   separation_ratio);
     fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
-    fsai::require(checkpoint_every >= 0, "--checkpoint-every", ">= 0",
-                  checkpoint_every);
+    run.validate();
   }
 };
 } // namespace
@@ -130,8 +119,8 @@ int main(int argc, char* argv[])
         setup.bind(params);
         params.parse(rt.app_args());
         sp.validate();
-        if (!sp.restart.empty())
-          sp.output = sp.restart; // continue in the run's own folder
+        if (!sp.run.restart.empty())
+          sp.output = sp.run.restart; // continue in the run's own folder
         setup.validate(sp.p_sub, sp.dt);
         params.print();
         fsai::io::prepare_output_dir(rt.comm(), sp.output);
@@ -177,7 +166,7 @@ int main(int argc, char* argv[])
         // A restart continues from the checkpoint's step (read before the
         // FE scene is built: its coupling log keeps the rows up to there)
         fsai::io::Checkpointer ckpt(rt.comm(), sp.output, params.to_json());
-        if (!sp.restart.empty())
+        if (!sp.run.restart.empty())
           ckpt.read();
         const long k0 = ckpt.step();
         std::unique_ptr<fsai::glottis::BernoulliGlottis> reduced;
@@ -191,7 +180,7 @@ int main(int argc, char* argv[])
           fem = std::make_unique<fsai::glottis::FlowGlottis>(
               rt.comm(), profile, vf, cp, fe, setup.fluid, setup.ale,
               setup.coupling, sp.output + "/coupling.csv",
-              sp.restart.empty() ? std::string::npos : std::size_t(k0));
+              sp.run.restart.empty() ? std::string::npos : std::size_t(k0));
           fsai::log::info("FE flow: {} cells, {} dofs", fem->cells(),
                           fem->flow_dofs());
           summary.set("flow_dofs", fem->flow_dofs());
@@ -203,8 +192,9 @@ int main(int argc, char* argv[])
                 std::vector<fsai::io::TimeSeriesWriter::Field>{
                     f.velocity(), f.pressure(), f.porous_field(),
                     fem->motion().displacement()},
-                sp.restart.empty() ? std::numeric_limits<double>::quiet_NaN()
-                                   : ckpt.meta().at("t").get<double>());
+                sp.run.restart.empty()
+                    ? std::numeric_limits<double>::quiet_NaN()
+                    : ckpt.meta().at("t").get<double>());
           }
         }
         const auto& fold = reduced ? reduced->fold() : fem->fold();
@@ -243,7 +233,7 @@ int main(int argc, char* argv[])
         // The series up to the checkpoint's step (later rows are dropped)
         // and the statistics rebuilt from those rows
         std::unique_ptr<fsai::io::CsvWriter> csv;
-        if (!sp.restart.empty())
+        if (!sp.run.restart.empty())
         {
           const auto& ck = ckpt.meta();
           if (reduced)
@@ -300,9 +290,7 @@ int main(int argc, char* argv[])
                     "{} [step {} failed; the last good state (step {}, t = "
                     "{:.6g} s) is in {}/last_good.xdmf{}]",
                     e.what(), k, k - 1, fem->time(), sp.output,
-                    ckpt.fields_stem().empty()
-                        ? ""
-                        : ", the last checkpoint is " + ckpt.fields_stem()));
+                    ckpt.last_checkpoint_note()));
               }
               throw;
             }
@@ -318,7 +306,7 @@ int main(int argc, char* argv[])
             its += s.iterations;
             its_max = std::max(its_max, s.iterations);
             unconverged += !s.converged;
-            if (sp.checkpoint_every > 0 and k % sp.checkpoint_every == 0)
+            if (sp.run.checkpoint_due(k))
             {
               nlohmann::json scalars{
                   {"coupling_unconverged_steps", unconverged}};
@@ -335,8 +323,7 @@ int main(int argc, char* argv[])
                 ckpt.write(k, s.t, scalars, &fields);
               }
             }
-            if (sp.kill_at_step == k)
-              std::raise(SIGKILL);
+            sp.run.kill_if_requested(k);
             progress.update(double(k),
                             fmt::format("t = {:.5f} g = {:+.3e} Q = {:.3e} "
                                         "its = {}",

@@ -54,7 +54,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <fmt/ranges.h>
 #include <limits>
 
@@ -92,9 +91,7 @@ struct VoiceParameters
   int wav_rate = 44100;
   bool check_result = false;
   double check_f0_tolerance = 0.01; // relative
-  int checkpoint_every = 0;         // steps between checkpoints (0: none)
-  std::string restart;              // run folder to continue
-  int kill_at_step = 0;             // testing: SIGKILL after this step
+  fsai::io::RestartOptions run;     // checkpoints and restarts
 
   void bind(fsai::common::Parameters& p)
   {
@@ -155,14 +152,7 @@ struct VoiceParameters
     p.add("check.f0_tolerance", check_f0_tolerance,
           "relative tolerance of --check-result on the sound's f0 (0: not "
           "checked)");
-    p.add("checkpoint-every", checkpoint_every,
-          "write DIR/checkpoint.json and the fields (one file per rank) "
-          "every N steps (0: never)");
-    p.add("restart", restart,
-          "continue the run in this folder from its checkpoint (same "
-          "parameters, any number of ranks; --duration may be longer)");
-    p.add("debug.kill_at_step", kill_at_step,
-          "testing: kill this process with SIGKILL after step N");
+    run.bind(p);
   }
   void validate() const
   {
@@ -182,8 +172,7 @@ struct VoiceParameters
     fsai::require(write_every >= 0, "--write_every", ">= 0", write_every);
     fsai::require(wav_rate == 44100 or wav_rate == 48000, "--wav_rate",
                   "44100 or 48000", wav_rate);
-    fsai::require(checkpoint_every >= 0, "--checkpoint-every", ">= 0",
-                  checkpoint_every);
+    run.validate();
   }
 };
 
@@ -273,8 +262,8 @@ int main(int argc, char* argv[])
         fsai::require(vp.mic_distance < vg.radius, "--mic_distance",
                       "inside the radiation region (< --voice.radius)",
                       vp.mic_distance);
-        if (!vp.restart.empty())
-          vp.output = vp.restart; // continue in the run's own folder
+        if (!vp.run.restart.empty())
+          vp.output = vp.run.restart; // continue in the run's own folder
         params.print();
         fsai::io::prepare_output_dir(rt.comm(), vp.output);
         fsai::io::RunSummary summary(rt.comm(), rt.program());
@@ -282,10 +271,10 @@ int main(int argc, char* argv[])
         // A restart continues from the checkpoint's step (read before the
         // scene is built: its coupling log keeps the rows up to there)
         fsai::io::Checkpointer ckpt(rt.comm(), vp.output, params.to_json());
-        if (!vp.restart.empty())
+        if (!vp.run.restart.empty())
           ckpt.read();
         const long k0 = ckpt.step();
-        const double t_restart = vp.restart.empty()
+        const double t_restart = vp.run.restart.empty()
                                      ? std::numeric_limits<double>::quiet_NaN()
                                      : ckpt.meta().at("t").get<double>();
 
@@ -353,7 +342,7 @@ int main(int argc, char* argv[])
         auto fem = std::make_unique<fsai::glottis::FlowGlottis>(
             rt.comm(), profile, vf, setup.contact, fe, setup.fluid, setup.ale,
             setup.coupling, vp.output + "/coupling.csv",
-            vp.restart.empty() ? std::string::npos : std::size_t(k0));
+            vp.run.restart.empty() ? std::string::npos : std::size_t(k0));
         fsai::mesh::MeshData am = [&]
         {
           fsai::common::ScopedTimer t("demo: acoustic mesh");
@@ -529,7 +518,7 @@ int main(int argc, char* argv[])
         // Restart: the flow, the sound, the source's last velocity and the
         // series up to the checkpoint (later rows dropped)
         std::unique_ptr<fsai::io::CsvWriter> csv;
-        if (!vp.restart.empty())
+        if (!vp.run.restart.empty())
         {
           fem->load(ckpt.fields());
           sound.load(ckpt.fields(), "sound.");
@@ -574,9 +563,7 @@ int main(int argc, char* argv[])
                 "{} [step {} failed; the last good flow state (step {}, t = "
                 "{:.6g} s) is in {}/last_good.xdmf{}]",
                 e.what(), k, k - 1, fem->time(), vp.output,
-                ckpt.fields_stem().empty()
-                    ? ""
-                    : ", the last checkpoint is " + ckpt.fields_stem()));
+                ckpt.last_checkpoint_note()));
           }
           {
             fsai::common::ScopedTimer timer("demo: sound step");
@@ -659,7 +646,7 @@ int main(int argc, char* argv[])
             flow_xdmf->write(s.t);
             sound_xdmf->write(s.t);
           }
-          if (vp.checkpoint_every > 0 and k % vp.checkpoint_every == 0)
+          if (vp.run.checkpoint_due(k))
           {
             auto fields = fem->save();
             sound.save(fields, "sound.");
@@ -669,8 +656,7 @@ int main(int argc, char* argv[])
             ckpt.write(k, s.t, {{"coupling_unconverged_steps", unconverged}},
                        &fields);
           }
-          if (vp.kill_at_step == k)
-            std::raise(SIGKILL);
+          vp.run.kill_if_requested(k);
           progress.update(double(k),
                           fmt::format("t = {:.5f} g = {:+.3e} Q = {:.3e} "
                                       "p_mic = {:+.3e}",

@@ -243,9 +243,9 @@ fsai::acoustics::WaveSolver::WaveSolver(
     auto map = _V->dofmap()->index_map;
     std::vector<std::int64_t> global(_bc_rows.size());
     map->local_to_global(_bc_rows, global);
-    std::vector<PetscInt> rows(global.begin(), global.end());
-    MatZeroRowsColumns(_A.mat(), PetscInt(rows.size()), rows.data(), 1.0,
-                       nullptr, nullptr);
+    _bc_rows_global.assign(global.begin(), global.end());
+    MatZeroRowsColumns(_A.mat(), PetscInt(_bc_rows_global.size()),
+                       _bc_rows_global.data(), 1.0, nullptr, nullptr);
   }
 
   // State vectors: p wraps the Function's array; v, a plain PETSc vectors
@@ -306,11 +306,7 @@ fsai::acoustics::WaveSolver::WaveSolver(
   // Varying section (E21 with mass and stiffness scaled by κ in the
   // section cells): A0 = the matrix above, D_a, D_k the changes from κ = 1,
   // assembled over those cells only and added every step
-  {
-    int here = boundaries.section_cells.empty() ? 0 : 1, any = 0;
-    MPI_Allreduce(&here, &any, 1, MPI_INT, MPI_MAX, mesh->comm());
-    _section = any != 0;
-  }
+  _section = on_any_rank(boundaries.section_cells);
   if (_section)
   {
     std::vector<std::int32_t> cells = boundaries.section_cells;
@@ -378,14 +374,8 @@ void fsai::acoustics::WaveSolver::update_section()
     MatAssemblyEnd(D->mat(), MAT_FINAL_ASSEMBLY);
   }
   // Pressure-release rows keep p̈ = 0: no change on them
-  {
-    auto map = _V->dofmap()->index_map;
-    std::vector<std::int64_t> global(_bc_rows.size());
-    map->local_to_global(_bc_rows, global);
-    std::vector<PetscInt> rows(global.begin(), global.end());
-    MatZeroRowsColumns(_D_a.mat(), PetscInt(rows.size()), rows.data(), 0.0,
-                       nullptr, nullptr);
-  }
+  MatZeroRowsColumns(_D_a.mat(), PetscInt(_bc_rows_global.size()),
+                     _bc_rows_global.data(), 0.0, nullptr, nullptr);
   MatCopy(_A0.mat(), _A.mat(), SAME_NONZERO_PATTERN);
   MatAXPY(_A.mat(), 1.0, _D_a.mat(), SUBSET_NONZERO_PATTERN);
   _solver.set_operator(_A.mat());
@@ -624,8 +614,6 @@ std::shared_ptr<fem::Function<double>> fsai::acoustics::absorbing_layer(
   sigma->x()->scatter_fwd();
   return sigma;
 }
-//-----------------------------------------------------------------------------
-//-----------------------------------------------------------------------------
 //-----------------------------------------------------------------------------
 void fsai::acoustics::WaveSolver::save(io::RankState& state,
                                        const std::string& prefix) const

@@ -163,7 +163,8 @@ private:
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
   std::vector<std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>>> _tags;
   std::shared_ptr<Form> _L_source, _L_wall;
-  std::vector<std::int32_t> _bc_rows; // owned Dirichlet rows (local)
+  std::vector<std::int32_t> _bc_rows;    // owned Dirichlet rows (local)
+  std::vector<PetscInt> _bc_rows_global; // the same, global
   dolfinx::la::petsc::Matrix _M, _C, _K, _A;
   dolfinx::la::petsc::Vector _p_vec; // wraps _p->x()
   dolfinx::la::petsc::Vector _v, _a, _b_inlet, _rhs, _work_p, _work_v;

@@ -361,7 +361,6 @@ void fsai::ale::MeshMotion::advance()
   _history = std::min(_history + 1, 2);
 }
 //-----------------------------------------------------------------------------
-//-----------------------------------------------------------------------------
 void fsai::ale::MeshMotion::save(io::RankState& state,
                                  const std::string& prefix) const
 {

@@ -1,9 +1,35 @@
 // Copyright (C) 2026 fsai developers
 #include "Checkpointer.h"
+#include "../common/Parameters.h"
 #include "../common/errors.h"
 #include "../common/timer.h"
 #include "field_state.h"
+#include <csignal>
 #include <fmt/format.h>
+
+void fsai::io::RestartOptions::bind(fsai::common::Parameters& p)
+{
+  p.add("checkpoint-every", checkpoint_every,
+        "write DIR/checkpoint.json (FE scenes: and the fields, one file per "
+        "rank) every N steps (0: never)");
+  p.add("restart", restart,
+        "continue the run in this folder from its checkpoint (same "
+        "parameters, any number of ranks; --duration may be longer)");
+  p.add("debug.kill_at_step", kill_at_step,
+        "testing: kill this process with SIGKILL after step N");
+}
+
+void fsai::io::RestartOptions::validate() const
+{
+  fsai::require(checkpoint_every >= 0, "--checkpoint-every", ">= 0",
+                checkpoint_every);
+}
+
+void fsai::io::RestartOptions::kill_if_requested(long k) const
+{
+  if (kill_at_step == k)
+    std::raise(SIGKILL);
+}
 
 fsai::io::Checkpointer::Checkpointer(MPI_Comm comm, std::string dir,
                                      nlohmann::json parameters)

@@ -14,8 +14,31 @@
 #include <string>
 #include <vector>
 
+namespace fsai::common
+{
+class Parameters;
+}
+
 namespace fsai::io
 {
+/// The restart options of a time-stepping demo (one set for all of them)
+struct RestartOptions
+{
+  int checkpoint_every = 0; ///< steps between checkpoints (0: none)
+  std::string restart;      ///< run folder to continue ("" : a new run)
+  int kill_at_step = 0;     ///< testing: SIGKILL after this step
+
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+  /// A checkpoint is due after step k
+  bool checkpoint_due(long k) const
+  {
+    return checkpoint_every > 0 and k % checkpoint_every == 0;
+  }
+  /// Testing: SIGKILL this process if k is the step to be killed after
+  void kill_if_requested(long k) const;
+};
+
 class Checkpointer
 {
 public:
@@ -41,6 +64,11 @@ public:
              const RankState* fields);
   /// Stem of the field files of the last checkpoint ("" if none)
   const std::string& fields_stem() const { return _stem; }
+  /// ", the last checkpoint is <stem>" (or "" if none), for error messages
+  std::string last_checkpoint_note() const
+  {
+    return _stem.empty() ? "" : ", the last checkpoint is " + _stem;
+  }
 
 private:
   MPI_Comm _comm;

@@ -9,18 +9,6 @@
 
 namespace
 {
-// Broadcast rank 0's error message; throw E on every rank if it is not empty
-template <typename E>
-void collective_error(MPI_Comm comm, std::string error)
-{
-  int n = int(error.size());
-  MPI_Bcast(&n, 1, MPI_INT, 0, comm);
-  if (n == 0)
-    return;
-  error.resize(n);
-  MPI_Bcast(error.data(), n, MPI_CHAR, 0, comm);
-  throw E(error);
-}
 // Throw E on every rank if any rank has an error (the lowest rank's message)
 template <typename E>
 void any_rank_error(MPI_Comm comm, const std::string& error)
@@ -52,30 +40,19 @@ std::string rank_file(MPI_Comm comm, const std::string& stem)
 // byte order: a checkpoint is read back on the machine class it was
 // written on)
 constexpr char magic[] = "fsai-state 1\n";
-} // namespace
 
-void fsai::io::write_rank_state(MPI_Comm comm, const std::string& stem,
-                                const RankState& state)
+// Write `path` through a temporary file: `body` writes it, then it is
+// flushed, synced and renamed over `path`; false (and no temporary left)
+// if any of that fails — `path` then still holds its previous content
+template <typename F>
+bool write_atomically(const std::string& path, F&& body)
 {
-  const std::string path = rank_file(comm, stem), tmp = path + ".tmp";
-  std::string error;
+  const std::string tmp = path + ".tmp";
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   bool ok = f != nullptr;
-  auto put = [&](const void* data, std::size_t bytes)
-  { ok = ok and std::fwrite(data, 1, bytes, f) == bytes; };
   if (ok)
   {
-    put(magic, sizeof(magic) - 1);
-    const std::uint64_t n = state.size();
-    put(&n, sizeof(n));
-    for (const auto& [name, v] : state)
-    {
-      const std::uint64_t len = name.size(), size = v.size();
-      put(&len, sizeof(len));
-      put(name.data(), len);
-      put(&size, sizeof(size));
-      put(v.data(), size * sizeof(double));
-    }
+    ok = body(f);
     ok = std::fflush(f) == 0 and ok;
     ok = ::fsync(fileno(f)) == 0 and ok;
     ok = std::fclose(f) == 0 and ok;
@@ -83,6 +60,39 @@ void fsai::io::write_rank_state(MPI_Comm comm, const std::string& stem,
   if (!ok or std::rename(tmp.c_str(), path.c_str()) != 0)
   {
     std::remove(tmp.c_str());
+    return false;
+  }
+  return true;
+}
+} // namespace
+
+void fsai::io::write_rank_state(MPI_Comm comm, const std::string& stem,
+                                const RankState& state)
+{
+  const std::string path = rank_file(comm, stem);
+  const bool ok = write_atomically(
+      path,
+      [&](std::FILE* f)
+      {
+        bool good = true;
+        auto put = [&](const void* data, std::size_t bytes)
+        { good = good and std::fwrite(data, 1, bytes, f) == bytes; };
+        put(magic, sizeof(magic) - 1);
+        const std::uint64_t n = state.size();
+        put(&n, sizeof(n));
+        for (const auto& [name, v] : state)
+        {
+          const std::uint64_t len = name.size(), size = v.size();
+          put(&len, sizeof(len));
+          put(name.data(), len);
+          put(&size, sizeof(size));
+          put(v.data(), size * sizeof(double));
+        }
+        return good;
+      });
+  std::string error;
+  if (!ok)
+  {
     error = "cannot write the checkpoint state '" + path
             + "' (disk full or not writable); the previous checkpoint is kept";
   }
@@ -146,8 +156,7 @@ const std::vector<double>& fsai::io::state_entry(const RankState& state,
   {
     throw InputError("restart: checkpoint entry '" + name + "' has "
                      + std::to_string(it->second.size()) + " values, the run "
-                     + std::to_string(size)
-                     + " (another mesh or number of ranks)");
+                     + std::to_string(size) + " (another mesh)");
   }
   return it->second;
 }
@@ -165,25 +174,18 @@ void fsai::io::write_checkpoint(MPI_Comm comm, const std::string& path,
   std::string error;
   if (rank == 0)
   {
-    const std::string tmp = path + ".tmp";
     const std::string text = data.dump(1);
-    std::FILE* f = std::fopen(tmp.c_str(), "w");
-    bool ok = f != nullptr;
-    if (ok)
+    if (!write_atomically(path,
+                          [&](std::FILE* f) {
+                            return std::fwrite(text.data(), 1, text.size(), f)
+                                   == text.size();
+                          }))
     {
-      ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-      ok = std::fflush(f) == 0 and ok;
-      ok = ::fsync(fileno(f)) == 0 and ok;
-      ok = std::fclose(f) == 0 and ok;
-    }
-    if (!ok or std::rename(tmp.c_str(), path.c_str()) != 0)
-    {
-      std::remove(tmp.c_str());
       error = "cannot write the checkpoint '" + path
               + "' (disk full or not writable); the previous one is kept";
     }
   }
-  collective_error<std::runtime_error>(comm, error);
+  any_rank_error<std::runtime_error>(comm, error);
 }
 
 nlohmann::json fsai::io::read_checkpoint(MPI_Comm comm, const std::string& path)
@@ -205,7 +207,7 @@ nlohmann::json fsai::io::read_checkpoint(MPI_Comm comm, const std::string& path)
         error = "restart: checkpoint '" + path + "' is not valid JSON";
     }
   }
-  collective_error<InputError>(comm, error);
+  any_rank_error<InputError>(comm, error);
   int n = int(text.size());
   MPI_Bcast(&n, 1, MPI_INT, 0, comm);
   text.resize(n);

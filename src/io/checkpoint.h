@@ -23,7 +23,8 @@ void write_checkpoint(MPI_Comm comm, const std::string& path,
 nlohmann::json read_checkpoint(MPI_Comm comm, const std::string& path);
 
 /// The arrays of a checkpoint that live on each rank (FE fields: the
-/// rank's owned and ghost entries; time-stepping history), keyed by name
+/// rank's owned entries with their keys, field_state.h; time-stepping
+/// history), keyed by name
 using RankState = std::map<std::string, std::vector<double>>;
 
 /// Every rank writes its `state` to `<stem>.r<rank>.bin` (temporary file,
