@@ -50,6 +50,9 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
   p.add("fluid.ksp_rtol", ksp_rtol,
         "iterative solver: relative tolerance (the previous step's solution "
         "is the initial guess)");
+  p.add("fluid.pc_lag", pc_lag,
+        "iterative solver: rebuild the preconditioner every pc_lag-th solve "
+        "(1: every solve; the solve still meets ksp_rtol)");
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidParameters::validate() const
@@ -63,6 +66,7 @@ void fsai::fluid::FluidParameters::validate() const
   fsai::require(inlet_eps >= 0, "--fluid.inlet_eps", ">= 0", inlet_eps);
   fsai::require(ksp_rtol > 0 and ksp_rtol < 1, "--fluid.ksp_rtol", "in (0, 1)",
                 ksp_rtol);
+  fsai::require(pc_lag >= 1, "--fluid.pc_lag", ">= 1", pc_lag);
 }
 //-----------------------------------------------------------------------------
 fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
@@ -307,14 +311,37 @@ int fsai::fluid::FluidSolver::solve()
   }
   {
     common::ScopedTimer t("fluid: solve");
+    // A kept preconditioner was built from an earlier operator (earlier
+    // mesh, convecting velocity and time step coefficients)
+    const bool reuse = _par.solver == "iterative" and !_configure_blocks
+                       and _solves_since_setup > 0
+                       and _solves_since_setup < _par.pc_lag;
+    KSPSetReusePreconditioner(_solver.ksp(), reuse ? PETSC_TRUE : PETSC_FALSE);
     _solver.set_operator(_A.mat());
     if (_configure_blocks)
       configure_blocks();
     la::petsc::Vector x(la::petsc::create_vector_wrap(*_up->x()), false);
     la::petsc::Vector bb(la::petsc::create_vector_wrap(b), false);
+    if (reuse)
+    {
+      auto up = _up->x()->array();
+      _saved_guess.assign(up.begin(), up.end());
+    }
     _solver.solve(x.vec(), bb.vec());
     KSPConvergedReason reason;
     KSPGetConvergedReason(_solver.ksp(), &reason);
+    _solves_since_setup = reuse ? _solves_since_setup + 1 : 1;
+    if (reason < 0 and reuse)
+    {
+      // Repeat from the same initial guess with a fresh preconditioner
+      std::copy(_saved_guess.begin(), _saved_guess.end(),
+                _up->x()->mutable_array().begin());
+      KSPSetReusePreconditioner(_solver.ksp(), PETSC_FALSE);
+      _solver.set_operator(_A.mat());
+      _solver.solve(x.vec(), bb.vec());
+      KSPGetConvergedReason(_solver.ksp(), &reason);
+      _solves_since_setup = 1;
+    }
     if (reason < 0)
     {
       throw std::runtime_error(fmt::format(
@@ -506,6 +533,9 @@ void fsai::fluid::FluidSolver::restore_state()
 void fsai::fluid::FluidSolver::save(io::RankState& state,
                                     const std::string& prefix) const
 {
+  // The next solve builds a fresh preconditioner, as a run restarted from
+  // this checkpoint does: both continue identically
+  _solves_since_setup = 0;
   // Velocity, its BDF history and the pressure, by mesh node; the mixed
   // vector up is rebuilt from v and p on load
   const auto kv = io::node_keys(*_V), kp = io::node_keys(*_Q);

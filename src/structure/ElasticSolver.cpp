@@ -172,8 +172,10 @@ fsai::structure::ElasticSolver::ElasticSolver(
       structure_forms::m(tdim, deg), {_V, _V}, coeffs, c, {}));
   _Jmat = la::petsc::Matrix(fem::petsc::create_matrix(*_J), false);
 
-  common::configure_direct_solver(_solver.ksp(), mesh->comm(), tdim);
   _solver.set_options_prefix("solid_");
+  common::configure_direct_solver(_solver.ksp(), mesh->comm(), tdim, false,
+                                  _V->dofmap()->index_map->size_global()
+                                      * _V->dofmap()->index_map_bs());
   _solver.set_from_options();
   _solver.set_operator(_Jmat.mat());
 }
