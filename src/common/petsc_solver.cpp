@@ -16,30 +16,26 @@ void fsai::common::configure_direct_solver(KSP ksp, MPI_Comm comm, int tdim,
   KSPSetType(ksp, KSPPREONLY);
   PC pc;
   KSPGetPC(ksp, &pc);
-  if (tdim == 2 and !saddle_point and unknowns > 0
-      and unknowns <= small_system_unknowns)
+  const bool small = tdim == 2 and !saddle_point and unknowns > 0
+                     and unknowns <= small_system_unknowns;
+  int size;
+  MPI_Comm_size(comm, &size);
+  if (small and size > 1)
   {
-    int size;
-    MPI_Comm_size(comm, &size);
-    if (size > 1)
-    {
-      // Every rank factorises the whole (gathered) matrix: for a few
-      // thousand unknowns MUMPS's communication costs more than the work
-      PCSetType(pc, PCREDUNDANT);
-      KSP inner;
-      PCRedundantGetKSP(pc, &inner);
-      KSPSetType(inner, KSPPREONLY);
-      KSPGetPC(inner, &pc);
-    }
-    PCSetType(pc, PCLU);
-    PCFactorSetMatSolverType(pc, MATSOLVERPETSC);
-    PCFactorSetMatOrderingType(pc, MATORDERINGRCM);
-    PCFactorSetZeroPivot(pc, 0.0);
-    return;
+    // Every rank factorises the whole (gathered) matrix: for a few
+    // thousand unknowns MUMPS's communication costs more than the work
+    PCSetType(pc, PCREDUNDANT);
+    KSP inner;
+    PCRedundantGetKSP(pc, &inner);
+    KSPSetType(inner, KSPPREONLY);
+    KSPGetPC(inner, &pc);
   }
   PCSetType(pc, PCLU);
-  PCFactorSetMatSolverType(pc, saddle_point ? MATSOLVERMUMPS
-                                            : lu_package(comm, tdim).c_str());
+  PCFactorSetMatSolverType(pc, small          ? MATSOLVERPETSC
+                               : saddle_point ? MATSOLVERMUMPS
+                                              : lu_package(comm, tdim).c_str());
+  if (small)
+    PCFactorSetMatOrderingType(pc, MATORDERINGRCM);
   PCFactorSetZeroPivot(pc, 0.0);
 }
 //-----------------------------------------------------------------------------

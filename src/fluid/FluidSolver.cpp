@@ -322,11 +322,9 @@ int fsai::fluid::FluidSolver::solve()
       configure_blocks();
     la::petsc::Vector x(la::petsc::create_vector_wrap(*_up->x()), false);
     la::petsc::Vector bb(la::petsc::create_vector_wrap(b), false);
+    std::vector<double> guess; // kept for a repeated solve
     if (reuse)
-    {
-      auto up = _up->x()->array();
-      _saved_guess.assign(up.begin(), up.end());
-    }
+      guess.assign(_up->x()->array().begin(), _up->x()->array().end());
     _solver.solve(x.vec(), bb.vec());
     KSPConvergedReason reason;
     KSPGetConvergedReason(_solver.ksp(), &reason);
@@ -334,8 +332,7 @@ int fsai::fluid::FluidSolver::solve()
     if (reason < 0 and reuse)
     {
       // Repeat from the same initial guess with a fresh preconditioner
-      std::copy(_saved_guess.begin(), _saved_guess.end(),
-                _up->x()->mutable_array().begin());
+      std::copy(guess.begin(), guess.end(), _up->x()->mutable_array().begin());
       KSPSetReusePreconditioner(_solver.ksp(), PETSC_FALSE);
       _solver.set_operator(_A.mat());
       _solver.solve(x.vec(), bb.vec());

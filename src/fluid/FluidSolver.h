@@ -158,7 +158,6 @@ private:
   void configure_blocks(); // fieldsplit block solvers, at the first solve
   bool _configure_blocks = false;
   mutable int _solves_since_setup = 0; // solves with this preconditioner
-  std::vector<double> _saved_guess;    // initial guess, for a repeated solve
   void split();
   struct State
   {
