@@ -38,7 +38,8 @@ RHO, DT = 1.2, 2e-5
 
 # (the defaults g_min = 0.02 mm, sigma_P = 1e7 are the stored default run,
 # bench/results/run_glottis_fe_default, 0.1 s)
-runs = [(g, 1e7) for g in (0.01e-3, 0.04e-3)] + [(0.02e-3, s) for s in (1e5, 1e9)]
+runs = [(g, 1e7) for g in (0.005e-3, 0.01e-3, 0.04e-3, 0.1e-3)] + \
+    [(0.02e-3, s) for s in (1e3, 1e4, 1e5, 1e9)]
 
 
 def series_stats(run, g_min, t_end, t_from=0.01):

@@ -69,7 +69,9 @@ struct SceneParameters
     p.add_choice("flow", flow, {"fe", "bernoulli"},
                  "flow model: fe (ALE Navier-Stokes) or bernoulli "
                  "(quasi-steady 1D)");
-    p.add_choice("fold", fold, {"2dof"}, "vocal-fold model: 2dof");
+    p.add_choice("fold", fold, {"2dof", "static"},
+                 "vocal-fold model: 2dof, or static (the 2-DOF profile held "
+                 "at h = --vf.h0: steady glottal flow)");
     p.add("p-sub", p_sub, "subglottal pressure [Pa]");
     p.add("duration", duration, "simulated time [s]");
     p.add("dt", dt, "time step [s]");
@@ -122,6 +124,13 @@ int main(int argc, char* argv[])
         if (!sp.run.restart.empty())
           sp.output = sp.run.restart; // continue in the run's own folder
         setup.validate(sp.p_sub, sp.dt);
+        vf.held = sp.fold == "static";
+        if (vf.held)
+        {
+          fsai::require(
+              vf.h0 < geo.rest_gap - fe.g_min, "--vf.h0",
+              "< rest gap - g_min with --fold static (an open glottis)", vf.h0);
+        }
         params.print();
         fsai::io::prepare_output_dir(rt.comm(), sp.output);
         fsai::io::RunSummary summary(rt.comm(), rt.program());

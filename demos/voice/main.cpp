@@ -79,13 +79,15 @@ struct VoiceParameters
   bool lighthill = true;      // Lighthill's source on
   bool wall = true;           // vibrating fold surface on
   bool source_average = true; // Lighthill velocity at the step midpoint
-  // The acoustic glottis follows the flow's gap (off: it made the default
-  // [u] unstable, README "Acoustic glottis")
-  bool glottis_section = false;
-  double taper_start = 0.02;  // ramp from here before the flow outlet [m]
-  double taper_end = 0.005;   // to zero here before the outlet [m]
-  double taper_inlet = 0.005; // ramp up over this length after the inlet [m]
-  double mic_distance = 0.03; // [m] beyond the lips, on the axis
+  // The acoustic glottis follows the flow's: the slit law in the cells
+  // under the fold (experimental, off: README "Acoustic glottis" has the
+  // measured F1/F2 of both variants)
+  bool glottal_slit = false;
+  bool slit_lighthill = false; // Lighthill's force in the slit's law
+  double taper_start = 0.02;   // ramp from here before the flow outlet [m]
+  double taper_end = 0.005;    // to zero here before the outlet [m]
+  double taper_inlet = 0.005;  // ramp up over this length after the inlet [m]
+  double mic_distance = 0.03;  // [m] beyond the lips, on the axis
   double stats_from = 0.5;
   int write_every = 100;
   int wav_rate = 44100;
@@ -126,11 +128,15 @@ struct VoiceParameters
           "Lighthill's source (false: the fold surface's vibration only)");
     p.add("voice.wall", wall,
           "vibrating fold surface (false: Lighthill's source only)");
-    p.add("voice.glottis_section", glottis_section,
+    p.add("voice.glottal_slit", glottal_slit,
           "experimental: the acoustic glottis (fixed at the rest gap) "
-          "follows the flow's gap: mass, stiffness and sources of the cells "
-          "under the fold scaled by the current / rest height of the fold "
-          "surface above them (unstable in the default run, see README)");
+          "follows the flow's: in the cells under the fold the momentum law "
+          "of the current slit (inertia g0/g, viscous and jet resistance; "
+          "false: air at rest in the rest slit)");
+    p.add("voice.slit_lighthill", slit_lighthill,
+          "with --voice.glottal_slit: Lighthill's force in the slit's "
+          "momentum law (true: 139 dB of spurious sound in --quick) or no "
+          "source in the slit cells (false)");
     p.add("voice.source_average", source_average,
           "Lighthill's source from (v_n + v_n+1)/2 (false: v_n+1)");
     p.add("voice.taper_start", taper_start,
@@ -374,27 +380,26 @@ int main(int argc, char* argv[])
                                          and std::abs(x[0] - x_step) > 1e-9;
                                 });
         }
-        // The acoustic domain is fixed with the glottis at rest; its cells
-        // under the fold surface (the glottal slit and the gap beside the
-        // fold) take the flow's cross-section: κ = current / rest height of
-        // the fold surface above each cell (Webster: the section scales
-        // mass and stiffness), so the acoustic glottis closes when the
-        // fold does. Without it the rest slit stays open and the domain's
-        // F1 is that of a tract open at both ends through the glottis
+        // The acoustic domain is fixed with the glottis at rest; in its
+        // cells under the fold surface (the glottal slit and the gap beside
+        // the fold) the air moves as in the flow's current slit (slit law,
+        // forms/acoustics.py): a slit g/g0 as wide as the mesh's has the
+        // inertia ρ0 g0/g and the resistance (g0/g) r per unit length, r =
+        // 3μ/g² (Poiseuille) + the jet's kinetic loss ρ0 u_jet (Flanagan's
+        // ρ0 U/A², spread over the fold's length in proportion to g), with g
+        // ≥ g_min as in the flow. So the slit closes acoustically when the
+        // fold closes (a g_min slit's resistance is ~500 times the tract's
+        // ρ0 c0/A) and is resistive when open, as the jet makes it. Without
+        // it the rest slit is an open inertance into the anechoic trachea
+        // whatever the fold does, and the domain's F1 is that of a tract
+        // open at the glottis.
         std::vector<std::int32_t> section_cells;
-        std::vector<std::array<double, 2>> section_mid;
+        std::vector<double> section_x; // cell midpoints' x
         const auto rest = fsai::glottis::moved_surface(
             profile, fsai::glottis::RigidMotion(0, 0, {0, 0}));
-        // κ at x for the moved surface `now` (1 outside the fold's extent)
-        auto section_scale
-            = [&](double x, const std::vector<std::array<double, 2>>& now)
-        {
-          if (x <= 0 or x >= geo.fold_length)
-            return 1.0;
-          return std::clamp(surface_height(now, x) / surface_height(rest, x),
-                            1e-3, 10.0);
-        };
-        if (vp.glottis_section)
+        const double g_min = setup.fe.g_min, mu = setup.fluid.mu,
+                     rho = setup.fluid.rho;
+        if (vp.glottal_slit)
         {
           const int tdim = am.mesh->topology().dim();
           const std::int32_t nc
@@ -409,15 +414,25 @@ int main(int argc, char* argv[])
                 m[k] += x[3 * v + k] / double(xdofs.links(c).size());
             if (m[0] <= 0 or m[0] >= geo.fold_length)
               continue;
-            const double yr = surface_height(rest, m[0]);
-            if (m[1] < yr)
+            if (m[1] < surface_height(rest, m[0]))
             {
               section_cells.push_back(c);
-              section_mid.push_back(m);
+              section_x.push_back(m[0]);
             }
           }
           wb.section_cells = section_cells;
+          wb.section_source = vp.slit_lighthill;
         }
+        // The fold surface displaces air only while the slit beside it is
+        // open: its acceleration enters fully above 2 g_min, not at all
+        // below g_min (the flow's boundary stops there too)
+        auto open_fraction
+            = [&](double x, const std::vector<std::array<double, 2>>& now)
+        {
+          if (!vp.glottal_slit or x <= 0 or x >= geo.fold_length)
+            return 1.0;
+          return std::clamp((surface_height(now, x) - g_min) / g_min, 0.0, 1.0);
+        };
         wb.radiation = facets("radiation");
         wb.radiation_beta = 0.5 / (vg.radius + vg.layer); // planar: 1/(2R)
         wb.vibrating = facets("fold");
@@ -443,13 +458,7 @@ int main(int argc, char* argv[])
         summary.set("tract_bandwidths_hz", tract_bandwidths);
         summary.set("domain_formants_hz", domain_formants);
 
-        // Source transfer and taper; the fold's surface nodes
-        struct SectionNode
-        {
-          std::size_t i;
-          double x, chi0;
-        };
-        std::vector<SectionNode> taper_section;
+        // Source transfer and taper
         ac::FlowSource source(rt.comm(), *fem->flow().velocity_space(),
                               fem->reference_coordinates(),
                               *sound.flow_velocity().function_space());
@@ -462,13 +471,6 @@ int main(int argc, char* argv[])
           for (std::size_t i = 0; i < c.size(); ++i)
           {
             c[i] = source_taper(X[3 * i], x_in, x_out, vp);
-            // Nodes under (or on) the fold surface: with the varying
-            // section the source there scales with κ too (Webster: the
-            // source per unit length is the section times that per volume)
-            if (vp.glottis_section and X[3 * i] > 0
-                and X[3 * i] < geo.fold_length
-                and X[3 * i + 1] <= surface_height(rest, X[3 * i]) + 1e-12)
-              taper_section.push_back({i, X[3 * i], c[i]});
           }
         }
         const auto Va = sound.wall_acceleration().function_space();
@@ -546,6 +548,8 @@ int main(int argc, char* argv[])
         }
         fsai::io::Progress progress("step", double(n), 5.0);
         std::array<double, 2> qdot_prev = fem->fold().qdot();
+        std::vector<double> slit_inertia(section_cells.size(), 1.0),
+            slit_resistance(section_cells.size(), 0.0);
         const auto loop0 = std::chrono::steady_clock::now();
         for (long k = k0 + 1; k <= n; ++k)
         {
@@ -595,31 +599,31 @@ int main(int argc, char* argv[])
                 = {(fold.qdot()[0] - qdot_prev[0]) / vp.dt,
                    (fold.qdot()[1] - qdot_prev[1]) / vp.dt};
             qdot_prev = fold.qdot();
-            // The acoustic glottis at the fold's current section: κ of the
-            // cells under the fold (clamped to [1e-3, 10]: closed keeps a
-            // thousandth of the rest section, not a singular matrix), and
-            // the loads entering there scaled alike (the wall's normal
-            // flux and Lighthill's source, as the κ-weighted weak form has
-            // them), else a closing fold would pump the near-zero volume
-            std::vector<std::array<double, 2>> now;
-            if (vp.glottis_section)
+            // The slit law of the fold's current position and the flow's
+            // jet (u_jet = Q / (2 g L_g) at the narrowest gap)
+            const auto now = fsai::glottis::moved_surface(profile, m);
+            if (vp.glottal_slit)
             {
-              now = fsai::glottis::moved_surface(profile, m);
-              auto kappa = sound.section_scale().x()->mutable_array();
-              for (std::size_t i = 0; i < section_cells.size(); ++i)
-                kappa[section_cells[i]] = section_scale(section_mid[i][0], now);
-              auto chi = sound.taper().x()->mutable_array();
-              for (const auto& n : taper_section)
-                chi[n.i] = n.chi0 * section_scale(n.x, now);
+              const double g_n = std::max(s.gap, g_min);
+              const double u_jet = std::abs(s.Q) / (2 * g_n * geo.depth);
+              for (std::size_t i = 0; i < section_x.size(); ++i)
+              {
+                const double x = section_x[i];
+                const double g = std::max(surface_height(now, x), g_min);
+                const double r = 3 * mu / (g * g)
+                                 + rho * u_jet * g / (g_n * geo.fold_length);
+                const double scale = surface_height(rest, x) / g;
+                slit_inertia[i] = scale;
+                slit_resistance[i] = scale * r;
+              }
+              sound.set_slit_law(slit_inertia, slit_resistance);
             }
             auto a = sound.wall_acceleration().x()->mutable_array();
             for (std::size_t i = 0; vp.wall and i < fold_dofs.size(); ++i)
             {
               const auto d = m.derivatives(fold_X[i]);
-              const double w
-                  = profile.weight(fold_X[i])
-                    * (vp.glottis_section ? section_scale(fold_X[i][0], now)
-                                          : 1.0);
+              const double w = profile.weight(fold_X[i])
+                               * open_fraction(fold_X[i][0], now);
               for (int c = 0; c < 2; ++c)
                 a[2 * fold_dofs[i] + c]
                     = w * (d[0][c] * qdd[0] + d[1][c] * qdd[1]);

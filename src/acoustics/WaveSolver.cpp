@@ -113,8 +113,8 @@ fsai::acoustics::WaveSolver::WaveSolver(
       _work_p(nullptr, false), _work_v(nullptr, false), _wall_b(nullptr, false),
       _wall_mask(nullptr, false), _wu(nullptr, false), _wv(nullptr, false),
       _wa(nullptr, false), _wu_pred(nullptr, false), _wv_pred(nullptr, false),
-      _wall_work(nullptr, false), _A0(nullptr, false), _D_a(nullptr, false),
-      _D_k(nullptr, false), _solver(mesh->comm())
+      _wall_work(nullptr, false), _A0(nullptr, false), _D_k(nullptr, false),
+      _solver(mesh->comm())
 {
   common::ScopedTimer timer("acoustics: setup");
   params.validate();
@@ -205,8 +205,16 @@ fsai::acoustics::WaveSolver::WaveSolver(
                 on(tags_damped));
   auto k = form(acoustic_forms::k(tdim, degree), {_V, _V}, {{"sigma", s}},
                 on(tags_rad));
-  _L_source = form(acoustic_forms::L_source(tdim, degree), {_V},
-                   {{"v", _v_flow}, {"taper", _taper}}, {});
+  // Lighthill's source: scale 1 outside a glottal slit (set per step
+  // inside it)
+  _source_scale = std::make_shared<fem::Function<double>>(
+      std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+          acoustic_forms::functionspace_L_source(tdim, degree), "source_scale",
+          mesh_nc)));
+  _source_scale->x()->set(1.0);
+  _L_source = form(
+      acoustic_forms::L_source(tdim, degree), {_V},
+      {{"v", _v_flow}, {"taper", _taper}, {"source_scale", _source_scale}}, {});
   _L_wall = form(acoustic_forms::L_wall(tdim, degree), {_V},
                  {{"a_wall", _a_wall}}, on(tags_wall));
   auto b_in
@@ -303,35 +311,80 @@ fsai::acoustics::WaveSolver::WaveSolver(
   MPI_Allreduce(&local, &_inlet_measure, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
   t_assemble.stop();
 
-  // Varying section (E21 with mass and stiffness scaled by κ in the
-  // section cells): A0 = the matrix above, D_a, D_k the changes from κ = 1,
-  // assembled over those cells only and added every step
+  // Glottal slit (forms/acoustics.py): A0 = the matrix above, D_k the
+  // stiffness change from κ = 1 over the slit cells, added every step
   _section = on_any_rank(boundaries.section_cells);
+  _rho0 = params.rho0;
   if (_section)
   {
+    fsai::require(degree == 1, "acoustics: a slit (section cells)",
+                  "P1 pressure", degree);
     std::vector<std::int32_t> cells = boundaries.section_cells;
     std::sort(cells.begin(), cells.end());
     cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    const std::int32_t nc = mesh->topology().index_map(tdim)->size_local();
+    for (auto c : cells)
+    {
+      fsai::require(c >= 0 and c < nc, "acoustics: slit cell",
+                    "an owned cell of this rank", c);
+    }
+    // Per cell: P1 dofs and ∇φ_i = J⁻ᵀ ∇̂φ_i (triangles, x-y plane)
+    fsai::require(tdim == 2, "acoustics: a slit (section cells)", "a 2D mesh",
+                  tdim);
+    const auto X = _V->tabulate_dof_coordinates(false);
+    for (auto c : cells)
+    {
+      const auto d = _V->dofmap()->cell_dofs(c);
+      std::array<std::int32_t, 3> dofs{d[0], d[1], d[2]};
+      const double j00 = X[3 * d[1]] - X[3 * d[0]],
+                   j01 = X[3 * d[2]] - X[3 * d[0]],
+                   j10 = X[3 * d[1] + 1] - X[3 * d[0] + 1],
+                   j11 = X[3 * d[2] + 1] - X[3 * d[0] + 1];
+      const double det = j00 * j11 - j01 * j10;
+      // rows of J⁻¹: (j11, −j01)/det and (−j10, j00)/det; ∇φ1 = first
+      // row of J⁻¹ (as a column), ∇φ2 = second, ∇φ0 = −∇φ1 − ∇φ2
+      const double g1x = j11 / det, g1y = -j01 / det, g2x = -j10 / det,
+                   g2y = j00 / det;
+      _slit_dofs.push_back(dofs);
+      _slit_grad.push_back({-g1x - g2x, -g1y - g2y, g1x, g1y, g2x, g2y});
+    }
+    _slit_cells = cells;
+    _slit_source = boundaries.section_source;
+    _kappa = std::make_shared<fem::Function<double>>(
+        std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+            acoustic_forms::functionspace_k_section(tdim, degree), "kappa",
+            mesh_nc)));
+    _kappa->x()->set(1.0);
+    _slit_inertia.assign(cells.size(), 1.0);
+    _slit_resistance.assign(cells.size(), 0.0);
+    _slit_v.assign(cells.size(), {0.0, 0.0});
     std::vector<std::int32_t> ones(cells.size(), 1);
     auto tags = std::make_shared<mesh::MeshTags<std::int32_t>>(
         mesh, tdim, std::move(cells), std::move(ones));
     _tags.push_back(tags);
-    _kappa = std::make_shared<fem::Function<double>>(
+    _slit_flux = std::make_shared<fem::Function<double>>(
         std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-            acoustic_forms::functionspace_a_section(tdim, degree), "kappa",
+            acoustic_forms::functionspace_L_section(tdim, degree), "slit_flux",
             mesh_nc)));
-    _kappa->x()->set(1.0);
-    Constants cs = constants;
-    cs["bdt2"] = constant(_beta * dt * dt);
+    // DG0 dofs are not numbered as the cells: the block of each slit cell
+    // in the scalar and in the vector space (κ and the source scale: the
+    // same element on the same mesh, hence the same numbering)
+    for (auto c : _slit_cells)
+    {
+      const auto d = _kappa->function_space()->dofmap()->cell_dofs(c)[0];
+      if (_source_scale->function_space()->dofmap()->cell_dofs(c)[0] != d)
+        throw std::runtime_error("acoustics: DG0 spaces numbered differently");
+      _slit_dof.push_back(
+          {d, _slit_flux->function_space()->dofmap()->cell_dofs(c)[0]});
+    }
     const std::map<IntegralType, const mesh::MeshTags<int>*> sd{
         {IntegralType::cell, tags.get()}};
-    _a_section = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-        acoustic_forms::a_section(tdim, degree), {_V, _V}, {{"kappa", _kappa}},
-        cs, sd, mesh_nc));
     _k_section = std::make_shared<fem::Form<double>>(fem::create_form<double>(
         acoustic_forms::k_section(tdim, degree), {_V, _V}, {{"kappa", _kappa}},
-        cs, sd, mesh_nc));
-    _D_a = assemble(*_a_section);
+        constants, sd, mesh_nc));
+    _L_section = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+        acoustic_forms::L_section(tdim, degree), {_V},
+        {{"slit_flux", _slit_flux}}, constants, sd, mesh_nc));
     _D_k = assemble(*_k_section);
     Mat A0;
     MatDuplicate(_A.mat(), MAT_COPY_VALUES, &A0);
@@ -354,33 +407,82 @@ fem::Function<double>& fsai::acoustics::WaveSolver::flow_velocity()
 //-----------------------------------------------------------------------------
 fem::Function<double>& fsai::acoustics::WaveSolver::taper() { return *_taper; }
 //-----------------------------------------------------------------------------
-fem::Function<double>& fsai::acoustics::WaveSolver::section_scale()
+void fsai::acoustics::WaveSolver::set_slit_law(
+    std::span<const double> inertia, std::span<const double> resistance)
 {
-  if (!_kappa)
-    throw std::runtime_error("acoustics: no section cells were given");
-  return *_kappa;
+  if (!_section)
+    throw std::runtime_error("acoustics: no slit (section cells) was given");
+  if (inertia.size() != _slit_cells.size()
+      or resistance.size() != _slit_cells.size())
+  {
+    throw std::runtime_error(
+        "acoustics: slit law for " + std::to_string(inertia.size()) + " cells, "
+        + std::to_string(_slit_cells.size()) + " expected");
+  }
+  for (std::size_t i = 0; i < inertia.size(); ++i)
+  {
+    if (!(inertia[i] > 0) or !(resistance[i] >= 0) or !std::isfinite(inertia[i])
+        or !std::isfinite(resistance[i]))
+    {
+      throw std::runtime_error(
+          "acoustics: slit law needs a finite inertia > 0 and resistance >= 0 "
+          "(got "
+          + std::to_string(inertia[i]) + ", " + std::to_string(resistance[i])
+          + ")");
+    }
+  }
+  std::copy(inertia.begin(), inertia.end(), _slit_inertia.begin());
+  std::copy(resistance.begin(), resistance.end(), _slit_resistance.begin());
 }
 //-----------------------------------------------------------------------------
 void fsai::acoustics::WaveSolver::update_section()
 {
-  common::ScopedTimer t("acoustics: section update");
-  for (auto [form, D] :
-       {std::pair{_a_section.get(), &_D_a}, std::pair{_k_section.get(), &_D_k}})
+  common::ScopedTimer t("acoustics: slit update");
+  // κ = 1 / (ρ'/ρ0 + r'Δt/ρ0) and the load κ r' v_n, cell by cell
   {
-    MatZeroEntries(D->mat());
-    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(D->mat(), ADD_VALUES),
-                         *form, {});
-    MatAssemblyBegin(D->mat(), MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(D->mat(), MAT_FINAL_ASSEMBLY);
+    auto kappa = _kappa->x()->mutable_array();
+    auto source = _source_scale->x()->mutable_array();
+    auto flux = _slit_flux->x()->mutable_array();
+    for (std::size_t i = 0; i < _slit_cells.size(); ++i)
+    {
+      const double r = _slit_resistance[i];
+      const double k = 1.0 / (_slit_inertia[i] + r * _dt / _rho0);
+      const auto [dk, dv] = _slit_dof[i];
+      kappa[dk] = k;
+      source[dk] = _slit_source ? k : 0.0;
+      flux[2 * dv] = k * r * _slit_v[i][0];
+      flux[2 * dv + 1] = k * r * _slit_v[i][1];
+    }
   }
+  MatZeroEntries(_D_k.mat());
+  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(_D_k.mat(), ADD_VALUES),
+                       *_k_section, {});
+  MatAssemblyBegin(_D_k.mat(), MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(_D_k.mat(), MAT_FINAL_ASSEMBLY);
   // Pressure-release rows keep p̈ = 0: no change on them
-  MatZeroRowsColumns(_D_a.mat(), PetscInt(_bc_rows_global.size()),
+  MatZeroRowsColumns(_D_k.mat(), PetscInt(_bc_rows_global.size()),
                      _bc_rows_global.data(), 0.0, nullptr, nullptr);
   MatCopy(_A0.mat(), _A.mat(), SAME_NONZERO_PATTERN);
-  MatAXPY(_A.mat(), 1.0, _D_a.mat(), SUBSET_NONZERO_PATTERN);
+  MatAXPY(_A.mat(), _beta * _dt * _dt, _D_k.mat(), SUBSET_NONZERO_PATTERN);
   _solver.set_operator(_A.mat());
 }
 //-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::update_slit_velocity()
+{
+  const auto p = _p->x()->array();
+  for (std::size_t i = 0; i < _slit_cells.size(); ++i)
+  {
+    const auto& d = _slit_dofs[i];
+    const auto& g = _slit_grad[i];
+    const double m = _slit_inertia[i] * _rho0 / _dt;
+    for (int k = 0; k < 2; ++k)
+    {
+      const double grad_p
+          = g[k] * p[d[0]] + g[2 + k] * p[d[1]] + g[4 + k] * p[d[2]];
+      _slit_v[i][k] = (m * _slit_v[i][k] - grad_p) / (m + _slit_resistance[i]);
+    }
+  }
+}
 fem::Function<double>& fsai::acoustics::WaveSolver::wall_acceleration()
 {
   return *_a_wall;
@@ -405,11 +507,11 @@ std::vector<double> fsai::acoustics::WaveSolver::source_vector()
 //-----------------------------------------------------------------------------
 void fsai::acoustics::WaveSolver::assemble_source(Vec b)
 {
-  // b = du/dt b_inlet + b_Lighthill + b_wall
+  // b = du/dt b_inlet + b_Lighthill + b_wall + b_slit
   VecSet(b, 0.0);
   if (_inlet_dudt != 0.0)
     VecAXPY(b, _inlet_dudt, _b_inlet.vec());
-  if (_lighthill or _vibrating)
+  if (_lighthill or _vibrating or _section)
   {
     _b_assembly->set(0.0);
     auto arr = _b_assembly->mutable_array();
@@ -417,6 +519,8 @@ void fsai::acoustics::WaveSolver::assemble_source(Vec b)
       fem::assemble_vector(arr, *_L_source);
     if (_vibrating)
       fem::assemble_vector(arr, *_L_wall);
+    if (_section)
+      fem::assemble_vector(arr, *_L_section);
     _b_assembly->scatter_rev(std::plus<double>());
     la::petsc::Vector w(la::petsc::create_vector_wrap(*_b_assembly), false);
     VecAXPY(b, 1.0, w.vec());
@@ -490,6 +594,10 @@ void fsai::acoustics::WaveSolver::step()
   VecAXPY(_work_p.vec(), (0.5 - _beta) * dt * dt, _a.vec());
   VecWAXPY(_work_v.vec(), (1.0 - _gamma) * dt, _a.vec(), _v.vec());
 
+  // The slit's κ and load at the new time (before the right-hand side)
+  if (_section)
+    update_section();
+
   // Right-hand side b(t + Δt) − C v~ − K p~, zero on pressure-release rows
   {
     common::ScopedTimer t("acoustics: source assembly");
@@ -502,8 +610,7 @@ void fsai::acoustics::WaveSolver::step()
   VecAXPY(_rhs.vec(), -1.0, tmp);
   if (_section)
   {
-    // κ of the new time: K(κ) p~ = (K + D_k) p~, A = A0 + D_a
-    update_section();
+    // κ of the new time: K(κ) p~ = (K + D_k) p~, A = A0 + βΔt² D_k
     MatMult(_D_k.mat(), _work_p.vec(), tmp);
     VecAXPY(_rhs.vec(), -1.0, tmp);
   }
@@ -544,6 +651,8 @@ void fsai::acoustics::WaveSolver::step()
   VecWAXPY(_p_vec.vec(), _beta * dt * dt, _a.vec(), _work_p.vec());
   VecWAXPY(_v.vec(), _gamma * dt, _a.vec(), _work_v.vec());
   _p->x()->scatter_fwd();
+  if (_section)
+    update_slit_velocity();
   if (_yielding)
   {
     // ü = (p − r ṽ − k ũ)/m_eff on the wall nodes, then the correctors
@@ -637,6 +746,20 @@ void fsai::acoustics::WaveSolver::save(io::RankState& state,
     put("wall_v", _wv);
     put("wall_a", _wa);
   }
+  if (_section)
+  {
+    // The slit's velocity by cell (input index)
+    const auto all = io::cell_keys(*_V->mesh());
+    std::vector<std::int64_t> keys_c;
+    std::vector<double> v;
+    for (std::size_t i = 0; i < _slit_cells.size(); ++i)
+    {
+      keys_c.push_back(all[_slit_cells[i]]);
+      v.insert(v.end(), _slit_v[i].begin(), _slit_v[i].end());
+    }
+    io::put_blocks(state, prefix + "slit_v", v, 2, keys_c,
+                   std::int32_t(keys_c.size()));
+  }
   state[prefix + "t"] = {_t};
 }
 //-----------------------------------------------------------------------------
@@ -663,6 +786,17 @@ void fsai::acoustics::WaveSolver::load(const std::vector<io::RankState>& ranks,
     get("wall_u", _wu);
     get("wall_v", _wv);
     get("wall_a", _wa);
+  }
+  if (_section)
+  {
+    const auto all = io::cell_keys(*_V->mesh());
+    std::vector<std::int64_t> keys_c;
+    for (auto c : _slit_cells)
+      keys_c.push_back(all[c]);
+    std::vector<double> v(2 * keys_c.size());
+    io::get_blocks(ranks, prefix + "slit_v", v, 2, keys_c);
+    for (std::size_t i = 0; i < _slit_cells.size(); ++i)
+      _slit_v[i] = {v[2 * i], v[2 * i + 1]};
   }
   _t = io::state_entry(ranks.at(0), prefix + "t", 1)[0];
 }

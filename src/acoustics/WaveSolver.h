@@ -11,6 +11,7 @@
 // with MUMPS).
 #pragma once
 
+#include <array>
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
@@ -18,6 +19,7 @@
 #include <io/checkpoint.h>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace fsai::common
@@ -68,10 +70,15 @@ struct WaveBoundaries
   /// m ü + r u̇ + k u = p' (WaveParameters::wall_*): the wall losses that
   /// give the tract's resonances their bandwidths
   std::vector<std::int32_t> yielding;
-  /// Cells (local indices) of a region whose cross-section may differ from
-  /// the mesh's by a factor κ(x, t) (section_scale()): mass and stiffness
-  /// scaled by κ there (Webster), the effective matrix rebuilt every step
+  /// Cells (owned, local indices; P1 only) of a slit whose momentum law is
+  /// ρ' ∂v/∂t + r' v = −∇p' (slit_inertia(), slit_resistance(); the
+  /// glottis of a fixed acoustic domain, forms/acoustics.py): their
+  /// stiffness is scaled every step and the effective matrix rebuilt
   std::vector<std::int32_t> section_cells;
+  /// Lighthill's force in the slit cells: in their momentum law, scaled by
+  /// κ like ∇p' (true), or left out (false: the source starts where the
+  /// slit ends)
+  bool section_source = true;
 };
 
 /// Newmark solver for E21 on a fixed mesh. Usage per step: set the source
@@ -111,9 +118,18 @@ public:
   dolfinx::fem::Function<double>& taper();
   /// Wall acceleration a (P1 vector) on the vibrating boundary
   dolfinx::fem::Function<double>& wall_acceleration();
-  /// Section scale κ (DG0, 1 by default) of the section_cells at the next
-  /// step (WaveBoundaries::section_cells)
-  dolfinx::fem::Function<double>& section_scale();
+  /// The slit's cells (WaveBoundaries::section_cells, sorted, no repeats)
+  const std::vector<std::int32_t>& slit_cells() const { return _slit_cells; }
+  /// The slit law at the next step, one value per slit_cells() entry:
+  /// inertia ρ'/ρ0 > 0 and resistance r' ≥ 0 [kg/(m³ s)] (defaults 1 and
+  /// 0: the plain wave equation)
+  void set_slit_law(std::span<const double> inertia,
+                    std::span<const double> resistance);
+  /// Acoustic velocity v' [m/s] in each slit cell after the last step
+  const std::vector<std::array<double, 2>>& slit_velocity() const
+  {
+    return _slit_v;
+  }
 
   /// Advance by one time step (t → t + Δt)
   void step();
@@ -174,14 +190,30 @@ private:
   dolfinx::la::petsc::Vector _wall_b, _wall_mask, _wu, _wv, _wa, _wu_pred,
       _wv_pred, _wall_work;
   std::unique_ptr<dolfinx::la::Vector<double>> _b_assembly;
-  // Varying section: κ, the forms of the change from κ = 1, their
-  // matrices, and the effective matrix without the change
+  // Glottal slit: the law's inertia and resistance, the stiffness scale κ
+  // and the load κ r' v_n they give, the velocity v' (all DG0); the form
+  // of the stiffness change from κ = 1 and its matrix D_k, the effective
+  // matrix without it (A0), the slit's load form; per slit cell its P1
+  // dofs and the gradient of their basis functions
   bool _section = false;
-  std::shared_ptr<dolfinx::fem::Function<double>> _kappa;
-  std::shared_ptr<Form> _a_section, _k_section;
-  dolfinx::la::petsc::Matrix _A0, _D_a, _D_k;
-  /// A = A0 + D_a(κ), D_k(κ) for the step's right-hand side
+  double _rho0 = 1.2;
+  std::shared_ptr<dolfinx::fem::Function<double>> _kappa, _slit_flux,
+      _source_scale;
+  bool _slit_source = true;
+  std::shared_ptr<Form> _k_section, _L_section;
+  dolfinx::la::petsc::Matrix _A0, _D_k;
+  std::vector<std::int32_t> _slit_cells;
+  std::vector<double> _slit_inertia, _slit_resistance;
+  std::vector<std::array<double, 2>> _slit_v;
+  /// DG0 blocks of each slit cell (scalar space, vector space)
+  std::vector<std::pair<std::int32_t, std::int32_t>> _slit_dof;
+  std::vector<std::array<std::int32_t, 3>> _slit_dofs; // its P1 dofs
+  std::vector<std::array<double, 6>> _slit_grad; // ∂φ_i/∂x, ∂φ_i/∂y
+  /// κ and κ r' v_n for the step; A = A0 + βΔt² D_k(κ), D_k(κ) for the
+  /// step's right-hand side
   void update_section();
+  /// v_{n+1} = (ρ'/Δt v_n − ∇p_{n+1}) / (ρ'/Δt + r') in each slit cell
+  void update_slit_velocity();
   dolfinx::la::petsc::KrylovSolver _solver;
 };
 

@@ -125,6 +125,7 @@ fsai::glottis::TwoDofFold::TwoDofFold(const FoldProfile& profile,
         _D[i][j] += c * Mx[i] * Mx[j];
   }
   _q0 = _q = {p.h0, 0.0};
+  _held = p.held;
 }
 
 void fsai::glottis::TwoDofFold::initialise(const Vec2& Q)
@@ -135,13 +136,15 @@ void fsai::glottis::TwoDofFold::initialise(const Vec2& Q)
     r[i] = Q[i] - _D[i][0] * _v0[0] - _D[i][1] * _v0[1] - _K[i][0] * _q0[0]
            - _K[i][1] * _q0[1];
   }
-  _a0 = _a = solve2(_M, r);
+  _a0 = _a = _held ? Vec2{0, 0} : solve2(_M, r);
 }
 
 void fsai::glottis::TwoDofFold::step(double dt, const Vec2& Q)
 {
   // Newmark β = ¼, γ = ½: q = q0 + dt v0 + dt²/4 (a0 + a), v = v0 + dt/2
   // (a0 + a); solve (M + dt/2 D + dt²/4 K) a = Q − D v* − K q*
+  if (_held)
+    return; // q = q0, v = a = 0 (initialise)
   const double b = 0.25, g = 0.5;
   Vec2 qs, vs;
   for (int i = 0; i < 2; ++i)

@@ -52,6 +52,10 @@ struct TwoDofParameters
   /// "rotation" (φ)
   std::string first_mode = "translation";
   double h0 = 0.0; ///< initial displacement h (a small perturbation) [m]
+  /// Hold the fold at (h0, 0) whatever the load: a static glottis of half-gap
+  /// g0 − h0 (steady-flow studies, e.g. the mesh convergence of the
+  /// glottal flow rate without the oscillation's sensitivity to it)
+  bool held = false;
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };
@@ -111,6 +115,7 @@ public:
 private:
   Mat2 _M, _K, _D;
   Vec2 _axis;
+  bool _held = false;
   Vec2 _q{}, _v{}, _a{};    // current (trial) state
   Vec2 _q0{}, _v0{}, _a0{}; // accepted state
 };
