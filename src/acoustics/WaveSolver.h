@@ -120,9 +120,10 @@ public:
   dolfinx::fem::Function<double>& wall_acceleration();
   /// The slit's cells (WaveBoundaries::section_cells, sorted, no repeats)
   const std::vector<std::int32_t>& slit_cells() const { return _slit_cells; }
-  /// The slit law at the next step, one value per slit_cells() entry:
-  /// inertia ρ'/ρ0 > 0 and resistance r' ≥ 0 [kg/(m³ s)] (defaults 1 and
-  /// 0: the plain wave equation)
+  /// The slit law from the next step() on, one value per slit_cells()
+  /// entry: inertia ρ'/ρ0 > 0 and resistance r' ≥ 0 [kg/(m³ s)] (defaults
+  /// 1 and 0: the plain wave equation; set_initial_state() uses these
+  /// defaults, the slit starting at rest)
   void set_slit_law(std::span<const double> inertia,
                     std::span<const double> resistance);
   /// Acoustic velocity v' [m/s] in each slit cell after the last step
