@@ -394,7 +394,8 @@ int main(int argc, char* argv[])
         // whatever the fold does, and the domain's F1 is that of a tract
         // open at the glottis.
         std::vector<std::int32_t> section_cells;
-        std::vector<double> section_x; // cell midpoints' x
+        std::vector<double> section_x;  // cell midpoints' x
+        std::vector<double> section_g0; // rest height of the fold there
         const auto rest = fsai::glottis::moved_surface(
             profile, fsai::glottis::RigidMotion(0, 0, {0, 0}));
         const double g_min = setup.fe.g_min, mu = setup.fluid.mu,
@@ -414,10 +415,12 @@ int main(int argc, char* argv[])
                 m[k] += x[3 * v + k] / double(xdofs.links(c).size());
             if (m[0] <= 0 or m[0] >= geo.fold_length)
               continue;
-            if (m[1] < surface_height(rest, m[0]))
+            const double g0 = surface_height(rest, m[0]);
+            if (m[1] < g0)
             {
               section_cells.push_back(c);
               section_x.push_back(m[0]);
+              section_g0.push_back(g0);
             }
           }
           wb.section_cells = section_cells;
@@ -601,9 +604,10 @@ int main(int argc, char* argv[])
             qdot_prev = fold.qdot();
             // The slit law of the fold's current position and the flow's
             // jet (u_jet = Q / (2 g L_g) at the narrowest gap)
-            const auto now = fsai::glottis::moved_surface(profile, m);
+            std::vector<std::array<double, 2>> now;
             if (vp.glottal_slit)
             {
+              now = fsai::glottis::moved_surface(profile, m);
               const double g_n = std::max(s.gap, g_min);
               const double u_jet = std::abs(s.Q) / (2 * g_n * geo.depth);
               for (std::size_t i = 0; i < section_x.size(); ++i)
@@ -612,7 +616,7 @@ int main(int argc, char* argv[])
                 const double g = std::max(surface_height(now, x), g_min);
                 const double r = 3 * mu / (g * g)
                                  + rho * u_jet * g / (g_n * geo.fold_length);
-                const double scale = surface_height(rest, x) / g;
+                const double scale = section_g0[i] / g;
                 slit_inertia[i] = scale;
                 slit_resistance[i] = scale * r;
               }

@@ -483,6 +483,16 @@ void fsai::acoustics::WaveSolver::update_slit_velocity()
     }
   }
 }
+//-----------------------------------------------------------------------------
+std::vector<std::int64_t> fsai::acoustics::WaveSolver::slit_keys() const
+{
+  const auto all = io::cell_keys(*_V->mesh());
+  std::vector<std::int64_t> keys;
+  for (auto c : _slit_cells)
+    keys.push_back(all[c]);
+  return keys;
+}
+//-----------------------------------------------------------------------------
 fem::Function<double>& fsai::acoustics::WaveSolver::wall_acceleration()
 {
   return *_a_wall;
@@ -749,14 +759,10 @@ void fsai::acoustics::WaveSolver::save(io::RankState& state,
   if (_section)
   {
     // The slit's velocity by cell (input index)
-    const auto all = io::cell_keys(*_V->mesh());
-    std::vector<std::int64_t> keys_c;
+    const auto keys_c = slit_keys();
     std::vector<double> v;
-    for (std::size_t i = 0; i < _slit_cells.size(); ++i)
-    {
-      keys_c.push_back(all[_slit_cells[i]]);
-      v.insert(v.end(), _slit_v[i].begin(), _slit_v[i].end());
-    }
+    for (const auto& vi : _slit_v)
+      v.insert(v.end(), vi.begin(), vi.end());
     io::put_blocks(state, prefix + "slit_v", v, 2, keys_c,
                    std::int32_t(keys_c.size()));
   }
@@ -789,10 +795,7 @@ void fsai::acoustics::WaveSolver::load(const std::vector<io::RankState>& ranks,
   }
   if (_section)
   {
-    const auto all = io::cell_keys(*_V->mesh());
-    std::vector<std::int64_t> keys_c;
-    for (auto c : _slit_cells)
-      keys_c.push_back(all[c]);
+    const auto keys_c = slit_keys();
     std::vector<double> v(2 * keys_c.size());
     io::get_blocks(ranks, prefix + "slit_v", v, 2, keys_c);
     for (std::size_t i = 0; i < _slit_cells.size(); ++i)

@@ -215,6 +215,8 @@ private:
   void update_section();
   /// v_{n+1} = (ρ'/Δt v_n − ∇p_{n+1}) / (ρ'/Δt + r') in each slit cell
   void update_slit_velocity();
+  /// Partition-independent keys of the slit cells (checkpoints)
+  std::vector<std::int64_t> slit_keys() const;
   dolfinx::la::petsc::KrylovSolver _solver;
 };
 
