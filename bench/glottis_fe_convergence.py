@@ -13,7 +13,17 @@ upward crossings of the mean gap, as fsai_glottis computes it. The runs
   mpirun -n 2 fsai_glottis --flow fe --duration 0.05 --fe.h_gap 0.035e-3 --fe.h_far 0.35e-3 \\
       --output .../run_glottis_conv_fine
   (the same with --duration 0.1 --write_every 0: run_glottis_conv_dt1e-5_01,
-   run_glottis_conv_fine_01)
+   run_glottis_conv_fine_01; these four with --coupling.predictor displacement,
+   the default before stop 21)
+
+The study on the 0.035 mm mesh (the coarsest whose forces are converged at
+a held glottis, bench/glottis_static_flow.py), 0.1 s at 2 ranks with
+--write_every 0, the window [0.05, 0.1] s:
+  --fe.h_gap 0.035e-3 --fe.h_far 0.35e-3                run_glottis_conv_fine_01_load
+  the same with --dt 1e-5                                run_glottis_h035_dt1e-5
+  --fe.h_gap 0.025e-3 --fe.h_far 0.25e-3                run_glottis_h025
+and run_glottis_conv_fine_01 (the displacement predictor) as the check that
+the load predictor's run is the same coupled solution.
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv)
 """
@@ -22,13 +32,18 @@ import os
 
 here = os.path.dirname(os.path.abspath(__file__))
 res = os.path.join(here, "results")
-WINDOWS = {"growing": (0.025, 0.05), "limit cycle": (0.05, 0.1)}
+WINDOWS = {"growing": (0.025, 0.05), "limit cycle": (0.05, 0.1),
+           "h 0.035 mm": (0.05, 0.1)}
 RUNS = {"growing": (("default", "run_glottis_fe_default"),
                     ("dt/2", "run_glottis_conv_dt1e-5"),
                     ("h/1.43", "run_glottis_conv_fine")),
         "limit cycle": (("default", "run_glottis_fe_default"),
                         ("dt/2", "run_glottis_conv_dt1e-5_01"),
-                        ("h/1.43", "run_glottis_conv_fine_01"))}
+                        ("h/1.43", "run_glottis_conv_fine_01")),
+        "h 0.035 mm": (("h 0.035 mm (load predictor)", "run_glottis_conv_fine_01_load"),
+                       ("displacement predictor", "run_glottis_conv_fine_01"),
+                       ("dt/2", "run_glottis_h035_dt1e-5"),
+                       ("h 0.025 mm", "run_glottis_h025"))}
 
 
 def stats(run, t0, t1):
@@ -47,8 +62,8 @@ def stats(run, t0, t1):
 
 
 rows = []
-print("| window | run | f0 | peak flow | cycles | gap min / max | f0 change | peak flow change |")
-print("|---|---|---|---|---|---|---|---|")
+print("| study | window | run | f0 | peak flow | cycles | gap min / max | f0 change | peak flow change |")
+print("|---|---|---|---|---|---|---|---|---|")
 for win, (t0, t1) in WINDOWS.items():
     base = None
     for name, run in RUNS[win]:
@@ -60,11 +75,11 @@ for win, (t0, t1) in WINDOWS.items():
         f0, qp, n, gmin, gmax = s
         if base is None:
             base = (f0, qp)
-        rows.append({"window": f"{t0}-{t1}", "run": name, "f0_hz": f0, "q_peak_ls": 1e3 * qp,
+        rows.append({"study": win, "window": f"{t0}-{t1}", "run": name, "f0_hz": f0, "q_peak_ls": 1e3 * qp,
                      "cycles": n, "gap_min_mm": 1e3 * gmin, "gap_max_mm": 1e3 * gmax,
                      "f0_change_pct": 100 * (f0 / base[0] - 1),
                      "q_peak_change_pct": 100 * (qp / base[1] - 1)})
-        print(f"| [{t0}, {t1}] s | {name} | {f0:.2f} Hz | {1e3 * qp:.4f} l/s | {n} | "
+        print(f"| {win} | [{t0}, {t1}] s | {name} | {f0:.2f} Hz | {1e3 * qp:.4f} l/s | {n} | "
               f"{1e3 * gmin:+.3f} / {1e3 * gmax:.3f} mm | "
               f"{rows[-1]['f0_change_pct']:+.2f} % | {rows[-1]['q_peak_change_pct']:+.2f} % |")
 with open(os.path.join(res, "glottis_fe_convergence.csv"), "w", newline="") as f:

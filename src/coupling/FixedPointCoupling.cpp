@@ -5,6 +5,7 @@
 #include "../common/log.h"
 #include "../io/CsvWriter.h"
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 //-----------------------------------------------------------------------------
@@ -59,6 +60,10 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
   _acc->new_step();
   StepReport rep;
   std::vector<double> Hx(x.size()), r(x.size()), next(x.size());
+  // Whether the accelerator acted in this step (a step converged at its
+  // first evaluation logs no relaxation factor: NaN, on every run and
+  // after a restart alike)
+  bool relaxed = false;
   for (int k = 1; k <= _par.max_iterations; ++k)
   {
     H(x, Hx);
@@ -86,6 +91,7 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
     if (k == _par.max_iterations and _par.max_iterations > 1)
       break;
     _acc->update(x, Hx, next);
+    relaxed = true;
     x.swap(next);
   }
   const bool explicit_scheme = _par.max_iterations == 1;
@@ -93,7 +99,8 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
   {
     _csv->row({t, double(rep.iterations), rep.residual, rep.first_residual,
                rep.residual_abs, rep.converged ? 1.0 : 0.0,
-               _acc->last_omega()});
+               relaxed ? _acc->last_omega()
+                       : std::numeric_limits<double>::quiet_NaN()});
   }
   if (!rep.converged and !explicit_scheme)
   {

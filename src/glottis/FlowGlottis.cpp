@@ -42,6 +42,8 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
         "closest approach of the fluid boundary to the axis [m]");
   p.add_choice("closure.gap_motion", gap_motion, {"algebraic", "elastic"},
                "mesh motion between the medial surface and the axis");
+  p.add_choice("coupling.predictor", predictor, {"load", "displacement"},
+               "first guess of the fold state each step");
 }
 
 void fsai::glottis::FlowGlottisParameters::validate() const
@@ -338,6 +340,7 @@ fsai::glottis::FlowGlottis::evaluate(double t, const std::array<double, 2>& q,
       = hertz_contact(_contact, _profile.edge_centres(),
                       _profile.geometry().medial_radius, m, _fold.qdot());
   _fold.step(_par.dt, {glob[0] + c.generalised[0], glob[1] + c.generalised[1]});
+  _load = {glob[0], glob[1]};
   s.drag = glob[2];
   s.lift = glob[3];
   s.moment = glob[1];
@@ -359,14 +362,9 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
   int rank;
   MPI_Comm_rank(_comm, &rank);
   std::vector<double> x;
+  const auto q0 = predict();
   if (rank == 0)
-  {
-    for (int k = 0; k < 2; ++k)
-    {
-      const double qk = _steps >= 2 ? 2 * _q_n[k] - _q_nn[k] : _q_n[k];
-      x.push_back(k == 0 ? qk : lever * qk);
-    }
-  }
+    x = {q0[0], lever * q0[1]};
   Sample s;
   auto rep = _loop->step(t, x,
                          [&](std::span<const double> xi, std::span<double> Hx)
@@ -386,6 +384,8 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
   _motion->advance();
   _q_nn = _q_n;
   _q_n = _fold.q();
+  _load_nn = _load_n;
+  _load_n = _load;
   ++_steps;
   _t = t;
   s.t = t;
@@ -412,6 +412,29 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
   return s;
 }
 //-----------------------------------------------------------------------------
+std::array<double, 2> fsai::glottis::FlowGlottis::predict()
+{
+  // Linear extrapolation of (h, φ) from the last two steps
+  std::array<double, 2> q = _q_n;
+  if (_steps >= 2)
+    q = {2 * _q_n[0] - _q_nn[0], 2 * _q_n[1] - _q_nn[1]};
+  if (_par.predictor == "displacement" or _steps == 0)
+    return q;
+  // The fold's own Newmark step under the extrapolated fluid load; the
+  // Hertz force (stiff, switching) at the extrapolated state. The trial
+  // step is repeated by the first evaluation (TwoDofFold::step starts
+  // from the accepted state every time)
+  std::array<double, 2> Q = _load_n;
+  if (_steps >= 2)
+    Q = {2 * _load_n[0] - _load_nn[0], 2 * _load_n[1] - _load_nn[1]};
+  const RigidMotion m(q[0], q[1], _fold.axis());
+  const auto c
+      = hertz_contact(_contact, _profile.edge_centres(),
+                      _profile.geometry().medial_radius, m, _fold.qdot());
+  _fold.step(_par.dt, {Q[0] + c.generalised[0], Q[1] + c.generalised[1]});
+  return _fold.q();
+}
+//-----------------------------------------------------------------------------
 fsai::io::RankState fsai::glottis::FlowGlottis::save() const
 {
   io::RankState state;
@@ -421,6 +444,8 @@ fsai::io::RankState fsai::glottis::FlowGlottis::save() const
   const auto f = _fold.state();
   state["fold.state"] = {f[0][0], f[0][1], f[1][0], f[1][1], f[2][0], f[2][1]};
   state["glottis.q_history"] = {_q_n[0], _q_n[1], _q_nn[0], _q_nn[1]};
+  state["glottis.load_history"]
+      = {_load_n[0], _load_n[1], _load_nn[0], _load_nn[1]};
   state["glottis.t_steps"] = {_t, double(_steps)};
   return state;
 }
@@ -449,6 +474,9 @@ void fsai::glottis::FlowGlottis::load(const std::vector<io::RankState>& ranks)
     const auto& q = io::state_entry(r0, "glottis.q_history", 4);
     _q_n = {q[0], q[1]};
     _q_nn = {q[2], q[3]};
+    const auto& l = io::state_entry(r0, "glottis.load_history", 4);
+    _load_n = {l[0], l[1]};
+    _load_nn = {l[2], l[3]};
     const auto& ts = io::state_entry(r0, "glottis.t_steps", 2);
     _t = ts[0];
     _steps = int(ts[1]);

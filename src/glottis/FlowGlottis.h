@@ -55,6 +55,13 @@ struct FlowGlottisParameters
   /// surface point above it; the rest of the mesh by the elastic
   /// extension) or "elastic" (all by the extension)
   std::string gap_motion = "algebraic";
+  /// First guess of (h, φ) each step: "load" (a Newmark step of the fold
+  /// under the fluid load extrapolated linearly from the last two steps,
+  /// plus the Hertz force at the extrapolated state: its error is
+  /// O(Δt⁴ F''/m), so a heavy fold's first coupling residual is already
+  /// below the tolerance) or "displacement" (linear extrapolation of
+  /// (h, φ), error O(Δt² q''): every step needs a second flow solve)
+  std::string predictor = "load";
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };
@@ -153,6 +160,11 @@ private:
   double boundary_lift(const RigidMotion& m) const;
   std::vector<std::int32_t> _candidates; // cells that may turn porous
   std::array<double, 2> _q_n{}, _q_nn{};
+  /// Generalised fluid load (Q_h, Q_φ) of the last evaluation and of the
+  /// last two accepted steps (the "load" predictor)
+  std::array<double, 2> _load{}, _load_n{}, _load_nn{};
+  /// The predictor's guess of (h, φ) for the step to time t
+  std::array<double, 2> predict();
   int _steps = 0;
   double _t = 0;
 };

@@ -1,0 +1,106 @@
+#!/usr/bin/python3
+"""Does the 2-DOF fold close the glottis on the converged FE mesh?
+
+On the scene's default mesh (h_gap = 0.05 mm) the fold closes in every
+cycle at 1200 Pa; on the 0.035 mm mesh, the coarsest whose glottal forces
+are converged (bench/glottis_static_flow.py), it settles into a cycle that
+does not reach the axis (bench/glottis_fe_convergence.py). This study
+varies what the scene leaves free (p_sub, rest gap, modal damping) on that
+mesh and reports, per 5 ms window, the smallest and largest half-gap: the
+start-up always overshoots into contact, so only the windows after
+t_settle (default 30 ms) say whether the cycle closes.
+
+Each case is one run of
+  mpirun -n 2 fsai_glottis --flow fe --fe.h_gap 0.035e-3 --fe.h_far 0.35e-3
+      --write_every 0 --duration D [case options]
+stored in bench/results/run_glottis_h035_<case>/ (series.csv, summary.json,
+run.log). A run that fails (e.g. an inverted ALE cell) is reported with
+its error line.
+
+usage: bench/glottis_closure_converged.py [BUILD_DIR] [--run CASE,..] [--t_settle S]
+writes bench/results/glottis_closure_converged.csv
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+
+here = os.path.dirname(os.path.abspath(__file__))
+ap = argparse.ArgumentParser()
+ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
+ap.add_argument("--run", help="cases to (re)run now, comma-separated")
+ap.add_argument("--t_settle", type=float, default=0.03)
+args = ap.parse_args()
+exe = os.path.join(args.build, "demos", "fsai_glottis")
+res = os.path.join(here, "results")
+env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+MESH = ["--fe.h_gap", "0.035e-3", "--fe.h_far", "0.35e-3"]
+
+# case: (duration [s], options). "conv_fine_01_load" is the convergence
+# study's run at the scene's defaults (0.1 s, stored under that name)
+CASES = {
+    "default": (0.1, []),
+    "z02": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]),
+    "z02_g15": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+                       "--glottis.rest_gap", "0.15e-3"]),
+    "z02_p16": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02", "--p-sub", "1600"]),
+}
+FOLDER = {"default": "run_glottis_conv_fine_01_load"}
+
+
+def folder(case):
+    return os.path.join(res, FOLDER.get(case, f"run_glottis_h035_{case}"))
+
+
+for case in (args.run.split(",") if args.run else []):
+    duration, opts = CASES[case]
+    out = folder(case)
+    cmd = (["mpirun", "-n", "2", exe, "--flow", "fe", "--duration", str(duration),
+            "--write_every", "0"] + MESH + opts + ["--output", out])
+    print(" ".join(cmd), flush=True)
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "run.log"), "w") as f:
+        subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT)
+
+rows = []
+print("| case | options | windows of 5 ms: min / max half-gap [mm] | contact after "
+      f"{1e3 * args.t_settle:g} ms | f0 | end |")
+print("|---|---|---|---|---|---|")
+for case, (duration, opts) in CASES.items():
+    out = folder(case)
+    if not os.path.exists(os.path.join(out, "series.csv")):
+        continue
+    with open(os.path.join(out, "series.csv")) as f:
+        r = [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
+    wins, t0 = [], 0.0
+    while t0 < r[-1]["t_s"] - 1e-9:
+        s = [x["gap_m"] for x in r if t0 < x["t_s"] <= t0 + 0.005 + 1e-12]
+        wins.append((t0, min(s), max(s)))
+        t0 += 0.005
+    late = [w for w in wins if w[0] >= args.t_settle - 1e-12]
+    contact = [w[1] <= 0 for w in late]
+    end, f0 = "completed", ""
+    if os.path.exists(os.path.join(out, "summary.json")):
+        with open(os.path.join(out, "summary.json")) as f:
+            f0 = f"{json.load(f)['f0_hz']:.1f} Hz"
+    log = os.path.join(out, "run.log")
+    if os.path.exists(log):
+        with open(log, errors="replace") as f:
+            err = [x.strip() for x in f if "error:" in x]
+        if err:
+            end = err[0].split("error:", 1)[1].split("[")[0].strip()
+    verdict = ("every window" if contact and all(contact) else
+               "none" if not any(contact) else f"{sum(contact)} of {len(contact)} windows")
+    print(f"| {case} | {' '.join(opts) or '(defaults: 1200 Pa, g0 0.2 mm, zeta 0.05)'} | "
+          + " ".join(f"{1e3 * a:+.3f}/{1e3 * b:.3f}" for _, a, b in wins)
+          + f" | {verdict} | {f0} | {end} |")
+    rows.append({"case": case, "options": " ".join(opts), "duration_s": r[-1]["t_s"],
+                 "late_min_gap_mm": 1e3 * min(w[1] for w in late) if late else "",
+                 "late_max_gap_mm": 1e3 * max(w[2] for w in late) if late else "",
+                 "contact_windows_after_settle": sum(contact), "windows_after_settle": len(contact),
+                 "end": end})
+with open(os.path.join(res, "glottis_closure_converged.csv"), "w", newline="") as f:
+    wr = csv.DictWriter(f, fieldnames=list(rows[0]))
+    wr.writeheader()
+    wr.writerows(rows)
