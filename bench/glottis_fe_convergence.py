@@ -21,7 +21,7 @@ a held glottis, bench/glottis_static_flow.py), 0.1 s at 2 ranks with
 --write_every 0, the window [0.05, 0.1] s:
   --fe.h_gap 0.035e-3 --fe.h_far 0.35e-3                run_glottis_conv_fine_01_load
   the same with --dt 1e-5                                run_glottis_h035_dt1e-5
-  --fe.h_gap 0.025e-3 --fe.h_far 0.25e-3                run_glottis_h025
+  --fe.h_gap 0.025e-3 --fe.h_far 0.25e-3                run_glottis_h025 (not run yet)
 and run_glottis_conv_fine_01 (the displacement predictor) as the check that
 the load predictor's run is the same coupled solution.
 

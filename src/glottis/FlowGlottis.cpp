@@ -414,19 +414,23 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
 //-----------------------------------------------------------------------------
 std::array<double, 2> fsai::glottis::FlowGlottis::predict()
 {
-  // Linear extrapolation of (h, φ) from the last two steps
-  std::array<double, 2> q = _q_n;
-  if (_steps >= 2)
-    q = {2 * _q_n[0] - _q_nn[0], 2 * _q_n[1] - _q_nn[1]};
+  // Linear extrapolation from the last two accepted steps (constant after
+  // the first)
+  auto extrapolate
+      = [this](const std::array<double, 2>& n, const std::array<double, 2>& nn)
+  {
+    return _steps >= 2
+               ? std::array<double, 2>{2 * n[0] - nn[0], 2 * n[1] - nn[1]}
+               : n;
+  };
+  const auto q = extrapolate(_q_n, _q_nn);
   if (_par.predictor == "displacement" or _steps == 0)
     return q;
   // The fold's own Newmark step under the extrapolated fluid load; the
   // Hertz force (stiff, switching) at the extrapolated state. The trial
   // step is repeated by the first evaluation (TwoDofFold::step starts
   // from the accepted state every time)
-  std::array<double, 2> Q = _load_n;
-  if (_steps >= 2)
-    Q = {2 * _load_n[0] - _load_nn[0], 2 * _load_n[1] - _load_nn[1]};
+  const auto Q = extrapolate(_load_n, _load_nn);
   const RigidMotion m(q[0], q[1], _fold.axis());
   const auto c
       = hertz_contact(_contact, _profile.edge_centres(),
