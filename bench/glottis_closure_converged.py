@@ -40,11 +40,26 @@ MESH = ["--fe.h_gap", "0.035e-3", "--fe.h_far", "0.35e-3"]
 # case: (duration [s], options). "conv_fine_01_load" is the convergence
 # study's run at the scene's defaults (0.1 s, stored under that name)
 CASES = {
-    "default": (0.1, []),
-    "z02": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]),
+    # (stop 21's runs, made when the algebraic gap columns reached g0 + R)
+    "default": (0.1, ["--closure.gap_columns", "1"]),
+    "z02": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02", "--closure.gap_columns", "1"]),
     "z02_g15": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
-                       "--glottis.rest_gap", "0.15e-3"]),
-    "z02_p16": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02", "--p-sub", "1600"]),
+                       "--glottis.rest_gap", "0.15e-3", "--closure.gap_columns", "1"]),
+    "z02_p16": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02", "--p-sub", "1600",
+                       "--closure.gap_columns", "1"]),
+    # at the time step this mesh needs (Δt = 1e−5: the jet's CFL ≈ 12)
+    "dt1_z02": (0.06, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+                       "--closure.gap_columns", "1"]),
+    # the same with the size-stiffened mesh motion (dt1_z02 inverted a cell
+    # at the fold's superior edge)
+    "dt1_z02_size": (0.06, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+                            "--ale.stiffening", "size", "--closure.gap_columns", "1"]),
+    # with the algebraic gap columns up to g0 + 0.75 R (the new default;
+    # the two runs above used g0 + R)
+    "dt1_z02_c75": (0.1, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+                          "--checkpoint-every", "2000"]),
+    # its time-step check (Δt/2, the first 0.06 s)
+    "dt05_z02_c75": (0.06, ["--dt", "5e-6", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]),
 }
 FOLDER = {"default": "run_glottis_conv_fine_01_load"}
 

@@ -23,7 +23,9 @@ a held glottis, bench/glottis_static_flow.py), 0.1 s at 2 ranks with
   the same with --dt 1e-5                                run_glottis_h035_dt1e-5
   --fe.h_gap 0.025e-3 --fe.h_far 0.25e-3                run_glottis_h025 (not run yet)
 and run_glottis_conv_fine_01 (the displacement predictor) as the check that
-the load predictor's run is the same coupled solution.
+the load predictor's run is the same coupled solution. The closing cycle on
+that mesh (ζ1 = ζ2 = 0.02, Δt 1e-5 for 0.1 s and 5e-6 for 0.06 s; stop 22)
+is compared in [0.03, 0.06] s (runs of bench/glottis_closure_converged.py).
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv)
 """
@@ -33,7 +35,8 @@ import os
 here = os.path.dirname(os.path.abspath(__file__))
 res = os.path.join(here, "results")
 WINDOWS = {"growing": (0.025, 0.05), "limit cycle": (0.05, 0.1),
-           "h 0.035 mm": (0.05, 0.1)}
+           "h 0.035 mm": (0.05, 0.1), "closing, h 0.035 mm": (0.03, 0.06),
+           "closing, h 0.035 mm, settled": (0.05, 0.1)}
 RUNS = {"growing": (("default", "run_glottis_fe_default"),
                     ("dt/2", "run_glottis_conv_dt1e-5"),
                     ("h/1.43", "run_glottis_conv_fine")),
@@ -43,7 +46,12 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
         "h 0.035 mm": (("h 0.035 mm (load predictor)", "run_glottis_conv_fine_01_load"),
                        ("displacement predictor", "run_glottis_conv_fine_01"),
                        ("dt/2", "run_glottis_h035_dt1e-5"),
-                       ("h 0.025 mm", "run_glottis_h025"))}
+                       ("h 0.025 mm", "run_glottis_h025")),
+        # the closing cycle on that mesh (bench/glottis_closure_converged.py,
+        # cases dt1_z02_c75 and dt05_z02_c75: Δt 1e-5 and 5e-6, ζ 0.02)
+        "closing, h 0.035 mm": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
+                                ("dt 5e-6", "run_glottis_h035_dt05_z02_c75")),
+        "closing, h 0.035 mm, settled": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),)}
 
 
 def stats(run, t0, t1):

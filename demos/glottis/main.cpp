@@ -39,6 +39,7 @@
 #include <io/Progress.h>
 #include <io/RunSummary.h>
 #include <io/TimeSeriesWriter.h>
+#include <io/csv_columns.h>
 #include <io/output_dir.h>
 
 #include <chrono>
@@ -61,7 +62,8 @@ struct SceneParameters
   double stats_from = 0.5; // statistics over t ≥ stats_from · duration
   int write_every = 50;    // fe: XDMF every N steps (0: none)
   std::vector<double> onset_sweep; // p_sub values for the stability sweep
-  fsai::io::RestartOptions run;    // checkpoints and restarts
+  std::string replay; // fe: a series.csv whose fold states move the mesh
+  fsai::io::RestartOptions run; // checkpoints and restarts
 
   void bind(fsai::common::Parameters& p)
   {
@@ -85,6 +87,10 @@ struct SceneParameters
     p.add("onset_sweep", onset_sweep,
           "bernoulli: linear stability of the static equilibrium at these "
           "p_sub [Pa] (printed, onset.csv) instead of a time run");
+    p.add("replay", replay,
+          "fe: move the mesh through the fold states (t_s, h_m, phi_rad) of "
+          "this series.csv, no flow, and report the mesh quality (tests the "
+          "--ale and --closure settings on a computed trajectory)");
     run.bind(p);
   }
   void validate() const
@@ -98,8 +104,37 @@ struct SceneParameters
                   separation_ratio);
     fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
     run.validate();
+    fsai::require(replay.empty() or flow == "fe", "--replay",
+                  "used with --flow fe", replay);
   }
 };
+
+/// --replay: the mesh through a run's fold states, its quality per state
+void replay_mesh_motion(fsai::glottis::FlowGlottis& fem,
+                        const std::string& path, fsai::io::RunSummary& summary)
+{
+  const auto c = fsai::io::read_csv_columns(path, {"t_s", "h_m", "phi_rad"});
+  fsai::ale::MeshQuality worst{std::numeric_limits<double>::infinity(), {}};
+  double t_worst = NAN;
+  for (std::size_t i = 0; i < c[0].size(); ++i)
+  {
+    const auto q = fem.move_mesh(c[0][i], {c[1][i], c[2][i]});
+    if (q.min_scaled_jacobian < worst.min_scaled_jacobian)
+    {
+      worst = q;
+      t_worst = c[0][i];
+    }
+    if ((i + 1) % 1000 == 0 or i + 1 == c[0].size())
+      fsai::log::info("replay: {} of {} states, t = {:.5f} s, min scaled "
+                      "Jacobian so far {:.3e} at t = {:.5f} s near ({:.4e}, "
+                      "{:.4e}) m",
+                      i + 1, c[0].size(), c[0][i], worst.min_scaled_jacobian,
+                      t_worst, worst.where[0], worst.where[1]);
+  }
+  summary.set("replay_states", long(c[0].size()));
+  summary.set("replay_min_scaled_jacobian", worst.min_scaled_jacobian);
+  summary.set("replay_worst_t_s", t_worst);
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -193,6 +228,12 @@ int main(int argc, char* argv[])
           fsai::log::info("FE flow: {} cells, {} dofs", fem->cells(),
                           fem->flow_dofs());
           summary.set("flow_dofs", fem->flow_dofs());
+          if (!sp.replay.empty())
+          {
+            replay_mesh_motion(*fem, sp.replay, summary);
+            summary.write(sp.output + "/summary.json");
+            return;
+          }
           if (sp.write_every > 0)
           {
             auto& f = fem->flow();

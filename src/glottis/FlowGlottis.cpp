@@ -42,6 +42,9 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
         "closest approach of the fluid boundary to the axis [m]");
   p.add_choice("closure.gap_motion", gap_motion, {"algebraic", "elastic"},
                "mesh motion between the medial surface and the axis");
+  p.add("closure.gap_columns", gap_columns,
+        "algebraic gap motion: the columns under the fold boundary up to "
+        "g0 + this times the edge radius from the axis");
   p.add_choice("coupling.predictor", predictor, {"load", "displacement"},
                "first guess of the fold state each step");
 }
@@ -54,6 +57,7 @@ void fsai::glottis::FlowGlottisParameters::validate() const
   fsai::require_positive("--fe.h_far", h_far);
   fsai::require_positive("--fe.h_gap", h_gap);
   fsai::require_positive("--closure.g_min", g_min);
+  fsai::require(gap_columns >= 0, "--closure.gap_columns", ">= 0", gap_columns);
 }
 
 fsai::glottis::FlowGlottisSetup::FlowGlottisSetup()
@@ -154,7 +158,7 @@ fsai::glottis::FlowGlottis::FlowGlottis(
     // interpolation of the two boundary nodes, exactly the discrete
     // boundary, so no node can pass it); every rank tests its owned and
     // ghost dofs by the same geometric rule
-    const double y_lim = g.rest_gap + g.medial_radius;
+    const double y_lim = g.rest_gap + p.gap_columns * g.medial_radius;
     std::vector<double> loc;
     for (auto& X : _fold_X)
       if (X[1] <= 1.5 * y_lim)
@@ -290,6 +294,13 @@ void fsai::glottis::FlowGlottis::mark_porous(const RigidMotion& m)
     c_arr[dofmap->cell_dofs(c)[0]]
         = _profile.contains(m.reference_of(mid)) ? 1.0 : 0.0;
   }
+}
+
+fsai::ale::MeshQuality
+fsai::glottis::FlowGlottis::move_mesh(double t, const std::array<double, 2>& q)
+{
+  set_boundary(RigidMotion(q[0], q[1], _fold.axis()));
+  return _motion->move(t);
 }
 
 std::array<double, 2>
