@@ -8,7 +8,10 @@ does not reach the axis (bench/glottis_fe_convergence.py). This study
 varies what the scene leaves free (p_sub, rest gap, modal damping) on that
 mesh and reports, per 5 ms window, the smallest and largest half-gap: the
 start-up always overshoots into contact, so only the windows after
-t_settle (default 30 ms) say whether the cycle closes.
+t_settle (default 30 ms) say whether the cycle closes. Stop 22 adds the
+time step this mesh needs (Δt = 1e−5, cases dt1_*; dt05_* is Δt/2): with
+ζ = 0.02 the cycle closes in every cycle there once the mesh motion's gap
+columns stop at g0 + 0.75 R (dt1_z02_c75; the g0 + R runs invert a cell).
 
 Each case is one run of
   mpirun -n 2 fsai_glottis --flow fe --fe.h_gap 0.035e-3 --fe.h_far 0.35e-3

@@ -11,5 +11,6 @@ namespace fsai::io
 /// naming the file when it cannot be read, a column is missing, or a field
 /// is not a number.
 std::vector<std::vector<double>>
-read_csv_columns(const std::string& path, const std::vector<std::string>& names);
+read_csv_columns(const std::string& path,
+                 const std::vector<std::string>& names);
 } // namespace fsai::io
