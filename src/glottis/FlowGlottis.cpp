@@ -308,9 +308,9 @@ fsai::glottis::FlowGlottis::evaluate(double t, const std::array<double, 2>& q,
                                      Sample& s)
 {
   const RigidMotion m(q[0], q[1], _fold.axis());
-  // 1. fold boundary and mesh; the fold wall moves with the mesh
-  set_boundary(m);
-  _motion->move(t);
+  // 1. fold boundary and mesh (the same move --replay makes); the fold
+  // wall moves with the mesh
+  move_mesh(t, q);
   _motion->velocity(_flow->mesh_velocity(), _par.dt);
   {
     auto w = _flow->mesh_velocity().x()->array();
