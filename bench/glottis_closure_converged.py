@@ -63,8 +63,14 @@ CASES = {
                           "--checkpoint-every", "2000"]),
     # its time-step check (Δt/2, the first 0.06 s)
     "dt05_z02_c75": (0.06, ["--dt", "5e-6", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]),
+    # its mesh check (stop 23): h_gap 0.025 mm, h_far 0.25 mm (the later
+    # options override MESH), the first 0.06 s
+    "h025_dt1_z02_c75": (0.06, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+                                "--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
+                                "--checkpoint-every", "2000"]),
 }
-FOLDER = {"default": "run_glottis_conv_fine_01_load"}
+FOLDER = {"default": "run_glottis_conv_fine_01_load",
+          "h025_dt1_z02_c75": "run_glottis_h025_dt1_z02_c75"}
 
 
 def folder(case):

@@ -50,7 +50,8 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
         # the closing cycle on that mesh (bench/glottis_closure_converged.py,
         # cases dt1_z02_c75 and dt05_z02_c75: Δt 1e-5 and 5e-6, ζ 0.02)
         "closing, h 0.035 mm": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
-                                ("dt 5e-6", "run_glottis_h035_dt05_z02_c75")),
+                                ("dt 5e-6", "run_glottis_h035_dt05_z02_c75"),
+                                ("h 0.025 mm", "run_glottis_h025_dt1_z02_c75")),
         "closing, h 0.035 mm, settled": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),)}
 
 

@@ -37,6 +37,9 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
   p.add("fluid.supg", supg, "SUPG stabilisation");
   p.add("fluid.pspg", pspg, "PSPG stabilisation");
   p.add("fluid.graddiv", graddiv, "div-div stabilisation");
+  p.add("fluid.tau_dt", tau_dt,
+        "SUPG/PSPG tau_m with its transient term (2/dt)^2 (false: tau of "
+        "the steady problem)");
   p.add("fluid.picard", picard, "linear solves per time step (1: Oseen)");
   p.add("fluid.picard_tol", picard_tol, "Picard tolerance on |dv|/|v|");
   p.add("fluid.sigma_p", sigma_p, "porous inverse permeability [kg/(m^3 s)]");
@@ -118,7 +121,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   _a0 = constant(0.0);
   _a1 = constant(0.0);
   _a2 = constant(0.0);
-  _inv_dt = constant(1.0 / dt);
+  _inv_dt = constant(p.tau_dt ? 1.0 / dt : 0.0);
   _p_in = constant(p.p_in);
   fsai::require(bnd.inlet_penalty.empty() or p.inlet_eps > 0,
                 "--fluid.inlet_eps", "> 0 for a penalty inlet", p.inlet_eps);
@@ -372,7 +375,7 @@ int fsai::fluid::FluidSolver::step()
     _a0->value[0] = 1 / dt, _a1->value[0] = -1 / dt, _a2->value[0] = 0;
   else
     _a0->value[0] = 1.5 / dt, _a1->value[0] = -2 / dt, _a2->value[0] = 0.5 / dt;
-  _inv_dt->value[0] = 1 / dt;
+  _inv_dt->value[0] = _par.tau_dt ? 1 / dt : 0.0;
   // Oseen: convecting velocity extrapolated, 2 v_n − v_nn (v_n at start)
   {
     auto vs = _v_star->x()->mutable_array();

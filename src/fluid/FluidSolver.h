@@ -34,6 +34,12 @@ struct FluidParameters
   bool supg = true;
   bool pspg = true;
   bool graddiv = true;
+  /// τ_m of SUPG/PSPG with its transient term (2/Δt)² (E20, Tezduyar
+  /// 1992). false drops it, as for steady problems: then τ_m does not
+  /// vanish as Δt → 0, so the stabilised solution does not depend on Δt
+  /// through τ (Hsu, Bazilevs, Calo, Tezduyar & Hughes 2010, CMAME 199,
+  /// 828–840, on the small-time-step degradation of SUPG/PSPG)
+  bool tau_dt = true;
   int picard = 1;           ///< linear solves per time step (1: Oseen)
   double picard_tol = 1e-6; ///< on |Δv|/|v| when picard > 1 or steady
   double sigma_p = 0.0;     ///< porous inverse permeability [kg/(m³ s)]

@@ -38,6 +38,18 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
   p.add("fe.ramp", ramp, "time over which p_sub ramps up [s]");
   p.add("fe.h_far", h_far, "mesh size away from the fold [m]");
   p.add("fe.h_gap", h_gap, "mesh size on the fold [m]");
+  p.add("fe.fine_height", fine_height,
+        "> 0: mesh size h_gap only within this distance of the axis, the "
+        "size growing beyond it as away from the fold (0: on all of the "
+        "fold) [m]");
+  p.add("fe.grading", grading,
+        "distance from the fold over which the mesh size grows from h_gap "
+        "to h_far [m]");
+  p.add("fe.h_jet", h_jet,
+        "> 0: mesh size in the jet region (within fe.jet_height of the "
+        "axis, downstream of the fold's inferior attachment), h_far "
+        "elsewhere [m]");
+  p.add("fe.jet_height", jet_height, "height of the jet region [m]");
   p.add("closure.g_min", g_min,
         "closest approach of the fluid boundary to the axis [m]");
   p.add_choice("closure.gap_motion", gap_motion, {"algebraic", "elastic"},
@@ -56,6 +68,10 @@ void fsai::glottis::FlowGlottisParameters::validate() const
   fsai::require_positive("--dt", dt);
   fsai::require_positive("--fe.h_far", h_far);
   fsai::require_positive("--fe.h_gap", h_gap);
+  fsai::require(fine_height >= 0, "--fe.fine_height", ">= 0", fine_height);
+  fsai::require_positive("--fe.grading", grading);
+  fsai::require(h_jet >= 0, "--fe.h_jet", ">= 0", h_jet);
+  fsai::require_positive("--fe.jet_height", jet_height);
   fsai::require_positive("--closure.g_min", g_min);
   fsai::require(gap_columns >= 0, "--closure.gap_columns", ">= 0", gap_columns);
 }
@@ -120,7 +136,8 @@ fsai::glottis::FlowGlottis::FlowGlottis(
   const auto& g = profile.geometry();
   fsai::require(p.g_min < g.rest_gap, "--closure.g_min", "< the rest gap",
                 p.g_min);
-  _mesh = mesh::glottis_channel(comm, profile, p.h_far, p.h_gap);
+  _mesh = mesh::glottis_channel(comm, profile, p.h_far, p.h_gap, p.fine_height,
+                                p.grading, p.h_jet, p.jet_height);
   auto find = [&](const char* name)
   { return _mesh.facet_tags->find(_mesh.facet_tag(name)); };
   _fold_facets = find("fold");

@@ -49,7 +49,15 @@ struct FlowGlottisParameters
   double dt = 2e-5;       ///< time step [s]
   double h_far = 0.5e-3;  ///< mesh size away from the fold [m]
   double h_gap = 0.05e-3; ///< mesh size on the fold [m]
-  double g_min = 0.02e-3; ///< closest approach of the fluid boundary [m]
+  /// > 0: the fold is meshed at h_gap only up to this distance from the
+  /// axis (the glottis), its upper flanks coarser (0: all of the fold)
+  double fine_height = 0;
+  double grading = 3e-3; ///< distance over which the size grows to h_far [m]
+  /// > 0: mesh size in the jet region (within jet_height of the axis, from
+  /// the fold's inferior attachment to the outlet), finer than h_far
+  double h_jet = 0;
+  double jet_height = 4e-3; ///< [m]
+  double g_min = 0.02e-3;   ///< closest approach of the fluid boundary [m]
   /// Mesh motion of the gap between the medial surface and the axis:
   /// "algebraic" (each node keeps its height fraction y/y_s under the
   /// surface point above it; the rest of the mesh by the elastic

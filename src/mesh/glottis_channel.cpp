@@ -7,13 +7,16 @@
 
 fsai::mesh::MeshData
 fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
-                            double h_far, double h_gap)
+                            double h_far, double h_gap, double fine_height,
+                            double grading, double h_jet, double jet_height)
 {
   const auto& g = profile.geometry();
   fsai::require(h_gap > 0 and h_gap <= g.rest_gap, "--fe.h_gap",
                 "in (0, rest_gap]", h_gap);
   fsai::require(h_far >= h_gap and h_far <= g.half_height / 2, "--fe.h_far",
                 "in [h_gap, half_height/2]", h_far);
+  fsai::require(h_jet == 0 or (h_jet >= h_gap and h_jet <= h_far), "--fe.h_jet",
+                "0 or in [h_gap, h_far]", h_jet);
   return build_with_gmsh(
       comm, 2,
       [&]()
@@ -58,7 +61,10 @@ fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
         }
         gmsh::model::addPhysicalGroup(2, {surface}, 1);
         gmsh::model::setPhysicalName(2, 1, "fluid");
-        size_near_curves({fold}, h_gap, h_far, 3e-3, 1000);
+        size_near_curves({fold}, h_gap, h_far, grading, 1000,
+                         fine_height > 0 ? SizeBand{{axis}, fine_height}
+                                         : SizeBand{},
+                         SizeBox{h_jet, {0, x1, 0, jet_height}, grading});
         gmsh::option::setNumber("Mesh.Algorithm", 6);
         gmsh::model::mesh::generate(2);
       });

@@ -15,7 +15,15 @@ namespace fsai::mesh
 /// to x = fold_length + outlet_length, less the fold (its surface a spline
 /// through the profile points). Facet groups "inlet", "outlet", "axis"
 /// (y = 0), "wall" (y = H) and "fold"; cell group "fluid". Size h_gap on
-/// the fold, growing linearly to h_far at 3 mm from it.
+/// the fold, growing linearly to h_far at `grading` from it. fine_height > 0:
+/// h_gap only up to fine_height from the axis; above, the size grows
+/// with the distance from that band in the same way, so that the fold's
+/// upper flanks, where the air is nearly at rest, are not meshed at the
+/// glottis's size. h_jet > 0: at most h_jet in the jet region, y ≤
+/// jet_height from the fold's inferior attachment (x = 0) to the outlet
+/// (growing to h_far over `grading` outside it).
 MeshData glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
-                         double h_far, double h_gap);
+                         double h_far, double h_gap, double fine_height = 0,
+                         double grading = 3e-3, double h_jet = 0,
+                         double jet_height = 0);
 } // namespace fsai::mesh

@@ -385,20 +385,48 @@ fsai::mesh::build_parts_with_gmsh(MPI_Comm comm, int gdim,
 //-----------------------------------------------------------------------------
 void fsai::mesh::size_near_curves(const std::vector<int>& curves, double h_min,
                                   double h_max, double dist_max,
-                                  int points_per_curve)
+                                  int points_per_curve, const SizeBand& band,
+                                  const SizeBox& box)
 {
   namespace field = gmsh::model::mesh::field;
-  const int fd = field::add("Distance");
-  field::setNumbers(fd, "CurvesList",
-                    std::vector<double>(curves.begin(), curves.end()));
-  field::setNumber(fd, "NumPointsPerCurve", points_per_curve);
-  const int ft = field::add("Threshold");
-  field::setNumber(ft, "InField", fd);
-  field::setNumber(ft, "SizeMin", h_min);
-  field::setNumber(ft, "SizeMax", h_max);
-  field::setNumber(ft, "DistMin", 0.0);
-  field::setNumber(ft, "DistMax", dist_max);
-  field::setAsBackgroundMesh(ft);
+  // h_min up to `dist_min` from `on`, h_max from dist_min + dist_max on
+  auto graded = [&](const std::vector<int>& on, double dist_min)
+  {
+    const int fd = field::add("Distance");
+    field::setNumbers(fd, "CurvesList",
+                      std::vector<double>(on.begin(), on.end()));
+    field::setNumber(fd, "NumPointsPerCurve", points_per_curve);
+    const int ft = field::add("Threshold");
+    field::setNumber(ft, "InField", fd);
+    field::setNumber(ft, "SizeMin", h_min);
+    field::setNumber(ft, "SizeMax", h_max);
+    field::setNumber(ft, "DistMin", dist_min);
+    field::setNumber(ft, "DistMax", dist_min + dist_max);
+    return ft;
+  };
+  int f = graded(curves, 0.0);
+  if (!band.curves.empty())
+  {
+    const int fb = graded(band.curves, band.width);
+    const int fmax = field::add("Max");
+    field::setNumbers(fmax, "FieldsList", {double(f), double(fb)});
+    f = fmax;
+  }
+  if (box.size > 0)
+  {
+    const int fb = field::add("Box");
+    field::setNumber(fb, "VIn", box.size);
+    field::setNumber(fb, "VOut", h_max);
+    field::setNumber(fb, "XMin", box.xy[0]);
+    field::setNumber(fb, "XMax", box.xy[1]);
+    field::setNumber(fb, "YMin", box.xy[2]);
+    field::setNumber(fb, "YMax", box.xy[3]);
+    field::setNumber(fb, "Thickness", box.transition);
+    const int fmin = field::add("Min");
+    field::setNumbers(fmin, "FieldsList", {double(f), double(fb)});
+    f = fmin;
+  }
+  field::setAsBackgroundMesh(f);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "MeshData.h"
+#include <array>
 #include <functional>
 #include <mpi.h>
 #include <string>
@@ -60,10 +61,26 @@ build_parts_with_gmsh(MPI_Comm comm, int gdim,
 /// current model — size h_min on `curves`, growing linearly with the
 /// distance to h_max at `dist_max` (distance sampled at `points_per_curve`
 /// points per curve) — with the sizes from points, boundary extension and
-/// curvature switched off so that the field alone decides
+/// curvature switched off so that the field alone decides.
+/// `band` (optional): the fine size holds only within band.width of the
+/// curves band.curves; beyond it the size grows in the same way with the
+/// distance from that band (the larger of the two sizes is taken)
+struct SizeBand
+{
+  std::vector<int> curves; ///< empty: no band, `curves` are fine everywhere
+  double width = 0;
+};
+/// `box` (optional, size > 0): size at most box.size inside the
+/// axis-aligned box, growing to h_max over box.transition outside it
+struct SizeBox
+{
+  double size = 0;                         ///< 0: no box
+  std::array<double, 4> xy = {0, 0, 0, 0}; ///< x_min, x_max, y_min, y_max
+  double transition = 0;
+};
 void size_near_curves(const std::vector<int>& curves, double h_min,
-                      double h_max, double dist_max,
-                      int points_per_curve = 200);
+                      double h_max, double dist_max, int points_per_curve = 200,
+                      const SizeBand& band = {}, const SizeBox& box = {});
 
 /// Build a mesh from a gmsh `.geo` file: the file is opened and meshed in
 /// dimension `gdim` on rank 0 and distributed.
