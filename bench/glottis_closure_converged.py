@@ -12,6 +12,7 @@ t_settle (default 30 ms) say whether the cycle closes. Stop 22 adds the
 time step this mesh needs (Δt = 1e−5, cases dt1_*; dt05_* is Δt/2): with
 ζ = 0.02 the cycle closes in every cycle there once the mesh motion's gap
 columns stop at g0 + 0.75 R (dt1_z02_c75; the g0 + R runs invert a cell).
+h025_dt1_z02_c75 (stop 23) is its mesh check: h_gap 0.025 mm, h_far 0.25 mm.
 
 Each case is one run of
   mpirun -n 2 fsai_glottis --flow fe --fe.h_gap 0.035e-3 --fe.h_far 0.35e-3

@@ -24,8 +24,9 @@ a held glottis, bench/glottis_static_flow.py), 0.1 s at 2 ranks with
   --fe.h_gap 0.025e-3 --fe.h_far 0.25e-3                run_glottis_h025 (not run yet)
 and run_glottis_conv_fine_01 (the displacement predictor) as the check that
 the load predictor's run is the same coupled solution. The closing cycle on
-that mesh (ζ1 = ζ2 = 0.02, Δt 1e-5 for 0.1 s and 5e-6 for 0.06 s; stop 22)
-is compared in [0.03, 0.06] s (runs of bench/glottis_closure_converged.py).
+that mesh (ζ1 = ζ2 = 0.02, Δt 1e-5 for 0.1 s and 5e-6 for 0.06 s; stop 22;
+h_gap 0.025 mm / h_far 0.25 mm at Δt 1e-5 for 0.06 s, stop 23) is compared
+in [0.03, 0.06] s (runs of bench/glottis_closure_converged.py).
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv)
 """
