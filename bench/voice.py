@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """The voice scene (fsai_demo, 2 MPI ranks): speed vs accuracy over three
 resolutions of flow mesh, acoustic mesh and time step, and the comparison
-runs of issue 8 on the coarse resolution — vowels a and i, the tract
-replaced by a short straight tube, the Lighthill source without its taper
-(truncated at the flow outlet), and an absorbing layer instead of the
-Sommerfeld condition; and the lossless tract (rigid walls, sound-hard
+runs of issue 8 — vowels a and i and the tract replaced by a short
+straight tube (default and coarse resolution), the variants of the
+monopole pair and the acoustic glottis (default resolution), and on the
+coarse resolution the Lighthill source without its taper (truncated at
+the flow outlet) and an absorbing layer instead of the Sommerfeld
+condition; and the lossless tract (rigid walls, sound-hard
 subglottal end) where the sound fails.
 
 Errors: f0 of the sound against the fold's f0 of the same run; F1, F2 from
@@ -46,6 +48,15 @@ runs = {
     "u_coarse": coarse,
     "u_medium": medium,
     "u_default": [],
+    "a_default": ["--vowel", "a"],
+    "i_default": ["--vowel", "i"],
+    "tube_default": ["--tract", "tube"],
+    # The acoustic glottis and the monopole pair (both on by default): each
+    # alone, and neither (Lighthill's source and the rest slit: the default
+    # before stop 24)
+    "u_default_lighthill_only": ["--voice.monopole=false", "--voice.glottal_slit=false"],
+    "u_default_slit_only": ["--voice.monopole=false"],
+    "u_default_monopole_only": ["--voice.glottal_slit=false"],
     "a_coarse": coarse + ["--vowel", "a"],
     "i_coarse": coarse + ["--vowel", "i"],
     "tube_coarse": coarse + ["--tract", "tube"],

@@ -559,3 +559,59 @@ TEST_CASE("Vibrating wall load is -rho0 a.n over the wall", "[acoustics][mpi]")
   const double b = load_on(s, [](double, double) { return 1.0; });
   CHECK(b == Approx(-wave.rho0 * a0 * (axi ? 0.5 : 1.0)).epsilon(1e-10));
 }
+TEST_CASE("Volume source in a duct: plane waves rho0 c0 Q / 2W each way",
+          "[acoustics][mpi]")
+{
+  // A channel of width W (planar, per unit depth) with anechoic ends and a
+  // compact volume source Q(t) (a Gaussian pulse, m²/s) at its middle: the
+  // 1D solution is p = ρ0 c0 Q(t − |x − x_s|/c0) / (2W) on each side. The
+  // load tested with q = 1 is ρ0 dQ/dt exactly (∫ψ = 1).
+  namespace ac = fsai::acoustics;
+  using namespace dolfinx::mesh;
+  const double L = 0.4, W = 0.02, xs = 0.2, Q0 = 1e-4, t0 = 6e-4, tau = 2e-4;
+  auto mesh = std::make_shared<Mesh>(create_rectangle(
+      MPI_COMM_WORLD, {{{0.0, 0.0}, {L, W}}}, {400, 20}, CellType::triangle,
+      GhostMode::shared_facet, DiagonalType::right));
+  mesh->topology_mutable().create_connectivity(1, 2);
+  ac::WaveBoundaries bnd;
+  bnd.absorbing = locate_entities_boundary(
+      *mesh, 1,
+      [&](auto& x) -> xt::xtensor<bool, 1> {
+        return xt::isclose(xt::row(x, 0), 0.0) || xt::isclose(xt::row(x, 0), L);
+      });
+  ac::WaveParameters wave;
+  const double dt = 1e-5;
+  ac::WaveSolver s(mesh, 1, false, wave, bnd, dt);
+  const std::size_t src = s.add_volume_source(
+      [&](double x, double)
+      {
+        const double u = (x - xs) / 0.005;
+        return std::abs(u) < 1 ? std::pow(std::cos(0.5 * M_PI * u), 2) : 0.0;
+      });
+  s.set_volume_source_rate(src, 2.0);
+  CHECK(load_on(s, [](double, double) { return 1.0; })
+        == Approx(wave.rho0 * 2.0).epsilon(1e-12));
+  CHECK_THROWS_AS(s.add_volume_source([](double, double) { return 0.0; }),
+                  fsai::InputError);
+  auto Q
+      = [&](double t) { return Q0 * std::exp(-std::pow((t - t0) / tau, 2)); };
+  auto dQ = [&](double t) { return -2 * (t - t0) / (tau * tau) * Q(t); };
+  fsai::io::PointProbes probe(mesh, {{0.3, 0.5 * W, 0.0}, {0.1, 0.5 * W, 0.0}});
+  double err = 0.0, peak = 0.0, back = 0.0;
+  for (int k = 1; k <= 200; ++k)
+  {
+    s.set_volume_source_rate(src, dQ(k * dt));
+    s.step();
+    const auto p = probe.values(*s.pressure());
+    const double exact
+        = wave.rho0 * wave.c0 * Q(k * dt - 0.1 / wave.c0) / (2 * W);
+    err = std::max(err, std::abs(p[0] - exact));
+    peak = std::max(peak, exact);
+    back = std::max(back, std::abs(p[1] - p[0]));
+  }
+  fsai::log::info("Volume source in a duct: max error {:.2e} of the peak "
+                  "{:.3f} Pa; left - right {:.1e}",
+                  err / peak, peak, back / peak);
+  CHECK(err < 0.01 * peak);
+  CHECK(back < 0.01 * peak);
+}

@@ -10,7 +10,11 @@
 // (mesh::voice_domain). Each flow step: Lighthill's source ρ0 v v from the
 // converged flow (FlowSource, reference-configuration interpolation),
 // tapered to zero before the flow outlet and at the subglottal inlet; the
-// fold surface vibrates (∂p'/∂n = −ρ0 a·n); then one acoustic Newmark step
+// fold surface vibrates (∂p'/∂n = −ρ0 a·n); the glottal flow Q(t) enters as
+// a volume-source pair (+Q after the fold, −Q before it: the valve's
+// monopole, which incompressible flow does not put into ρ0 v v); the
+// acoustic glottis takes the flow's slit law (inertia and resistance of the
+// current gap, closed when the folds touch); then one acoustic Newmark step
 // with the same Δt.
 //
 // Sample runs:
@@ -79,10 +83,13 @@ struct VoiceParameters
   bool lighthill = true;      // Lighthill's source on
   bool wall = true;           // vibrating fold surface on
   bool source_average = true; // Lighthill velocity at the step midpoint
-  // The acoustic glottis follows the flow's: the slit law in the cells
-  // under the fold (experimental, off: README "Acoustic glottis" has the
-  // measured F1/F2 of both variants)
-  bool glottal_slit = false;
+  // The glottal volume flow as a volume-source pair (see bind()) and the
+  // acoustic glottis following the flow's (the slit law in the cells under
+  // the fold): both on, as together they give the tract's F1/F2 (README
+  // "Acoustic glottis" has the measured F1/F2 of all four variants)
+  bool monopole = true;
+  double monopole_length = 0.005; // [m] each source's extent along x
+  bool glottal_slit = true;
   bool slit_lighthill = false; // Lighthill's force in the slit's law
   double taper_start = 0.02;   // ramp from here before the flow outlet [m]
   double taper_end = 0.005;    // to zero here before the outlet [m]
@@ -129,7 +136,7 @@ struct VoiceParameters
     p.add("voice.wall", wall,
           "vibrating fold surface (false: Lighthill's source only)");
     p.add("voice.glottal_slit", glottal_slit,
-          "experimental: the acoustic glottis (fixed at the rest gap) "
+          "the acoustic glottis (fixed at the rest gap) "
           "follows the flow's: in the cells under the fold the momentum law "
           "of the current slit (inertia g0/g, viscous and jet resistance; "
           "false: air at rest in the rest slit)");
@@ -139,6 +146,12 @@ struct VoiceParameters
           "source in the slit cells (false)");
     p.add("voice.source_average", source_average,
           "Lighthill's source from (v_n + v_n+1)/2 (false: v_n+1)");
+    p.add("voice.monopole", monopole,
+          "the flow's glottal volume flow Q(t) as a volume-source pair, +Q "
+          "after the fold and -Q before it (the valve's monopole, which "
+          "Lighthill's rho0 v v of the incompressible flow does not carry)");
+    p.add("voice.monopole_length", monopole_length,
+          "--voice.monopole: extent of each source along the channel [m]");
     p.add("voice.taper_start", taper_start,
           "taper starts this far before the flow outlet [m]");
     p.add("voice.taper_end", taper_end,
@@ -173,6 +186,7 @@ struct VoiceParameters
                   "--voice.taper_start", "> --voice.taper_end >= 0",
                   taper_start);
     fsai::require(taper_inlet >= 0, "--voice.taper_inlet", ">= 0", taper_inlet);
+    fsai::require_positive("--voice.monopole_length", monopole_length);
     fsai::require_positive("--mic_distance", mic_distance);
     fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
     fsai::require(write_every >= 0, "--write_every", ">= 0", write_every);
@@ -448,6 +462,32 @@ int main(int argc, char* argv[])
               {x_lips, 0.0, 0.0}, vg.radius, vg.layer, wave.c0, 1e-3);
         }
         ac::WaveSolver sound(am.mesh, 1, false, wave, wb, vp.dt, sigma, true);
+        // The valve's monopole pair (--voice.monopole): the glottal flow
+        // leaves the subglottal channel and enters the supraglottal one.
+        // Incompressible flow carries Q(t) through its whole domain at once,
+        // so Lighthill's ρ0 v v (E15) holds no volume source; these two
+        // cos² bumps next to the fold (each 2 × monopole_length long, over
+        // the channel's width) put +Q and −Q back (E14's right-hand side
+        // ρ0 ∂q/∂t, per unit depth of the half model: Q/(2 L_g)).
+        std::array<std::size_t, 2> monopole{};
+        if (vp.monopole)
+        {
+          const double l = vp.monopole_length;
+          fsai::require(2 * l <= geo.inlet_length
+                            and 2 * l <= geo.outlet_length,
+                        "--voice.monopole_length",
+                        "<= half the sub- and supraglottal channel lengths", l);
+          auto bump = [l](double x, double centre)
+          {
+            const double u = (x - centre) / l;
+            return std::abs(u) < 1 ? std::pow(std::cos(0.5 * M_PI * u), 2)
+                                   : 0.0;
+          };
+          monopole[0] = sound.add_volume_source(
+              [&](double x, double) { return bump(x, geo.fold_length + l); });
+          monopole[1] = sound.add_volume_source([&](double x, double)
+                                                { return bump(x, -l); });
+        }
         fsai::log::info("FE flow: {} cells, {} dofs; acoustics: {} cells, {} "
                         "dofs",
                         fem->cells(), fem->flow_dofs(),
@@ -551,6 +591,7 @@ int main(int argc, char* argv[])
         }
         fsai::io::Progress progress("step", double(n), 5.0);
         std::array<double, 2> qdot_prev = fem->fold().qdot();
+        double q_monopole = Q.empty() ? 0.0 : Q.back(); // last converged Q
         std::vector<double> slit_inertia(section_cells.size(), 1.0),
             slit_resistance(section_cells.size(), 0.0);
         const auto loop0 = std::chrono::steady_clock::now();
@@ -621,6 +662,22 @@ int main(int argc, char* argv[])
                 slit_resistance[i] = scale * r;
               }
               sound.set_slit_law(slit_inertia, slit_resistance);
+            }
+            if (vp.monopole)
+            {
+              // dQ/dt over the step (the midpoint rate, as the wall's q̈).
+              // A step whose coupling did not converge has a meaningless Q
+              // (measured: +0.7 l/s for one step while the glottis closes),
+              // and its dQ/dt, an impulse, would ring the tract's lightly
+              // damped upper resonances for the rest of the run: Q is held
+              // over it (the warning is logged by the coupling)
+              const double dQ
+                  = s.converged ? (s.Q - q_monopole) / vp.dt / (2 * geo.depth)
+                                : 0.0;
+              if (s.converged)
+                q_monopole = s.Q;
+              sound.set_volume_source_rate(monopole[0], dQ);
+              sound.set_volume_source_rate(monopole[1], -dQ);
             }
             auto a = sound.wall_acceleration().x()->mutable_array();
             for (std::size_t i = 0; vp.wall and i < fold_dofs.size(); ++i)

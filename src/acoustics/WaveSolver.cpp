@@ -515,12 +515,92 @@ std::vector<double> fsai::acoustics::WaveSolver::source_vector()
   return out;
 }
 //-----------------------------------------------------------------------------
+std::size_t fsai::acoustics::WaveSolver::add_volume_source(
+    const std::function<double(double, double)>& shape)
+{
+  const mesh::Mesh& mesh = *_V->mesh();
+  const int tdim = mesh.topology().dim();
+  const auto dofmap = _V->dofmap();
+  if (dofmap->cell_dofs(0).size() != std::size_t(tdim + 1))
+    throw fsai::InputError("volume source: P1 pressure only");
+  // ∫ψ φ_i by the one-point rule: |K| ψ(centre)/(tdim + 1) to each vertex
+  la::Vector<double> w(dofmap->index_map, 1);
+  auto wa = w.mutable_array();
+  const auto& gdofs = mesh.geometry().dofmap();
+  const auto x = mesh.geometry().x();
+  const std::int32_t n_owned = mesh.topology().index_map(tdim)->size_local();
+  double local = 0.0;
+  for (std::int32_t c = 0; c < n_owned; ++c)
+  {
+    const auto g = gdofs.links(c);
+    std::array<std::array<double, 3>, 4> v{};
+    std::array<double, 3> centre{};
+    for (int i = 0; i <= tdim; ++i)
+      for (int d = 0; d < 3; ++d)
+      {
+        v[i][d] = x[3 * g[i] + d];
+        centre[d] += v[i][d] / (tdim + 1);
+      }
+    const double ex = v[1][0] - v[0][0], ey = v[1][1] - v[0][1],
+                 fx = v[2][0] - v[0][0], fy = v[2][1] - v[0][1];
+    double measure = 0.5 * std::abs(ex * fy - ey * fx);
+    if (tdim == 3)
+    {
+      std::array<double, 3> a, b, e;
+      for (int d = 0; d < 3; ++d)
+      {
+        a[d] = v[1][d] - v[0][d];
+        b[d] = v[2][d] - v[0][d];
+        e[d] = v[3][d] - v[0][d];
+      }
+      measure = std::abs(a[0] * (b[1] * e[2] - b[2] * e[1])
+                         - a[1] * (b[0] * e[2] - b[2] * e[0])
+                         + a[2] * (b[0] * e[1] - b[1] * e[0]))
+                / 6.0;
+    }
+    const double s = shape(centre[0], centre[1]);
+    if (!(s >= 0.0) or !std::isfinite(s))
+      throw fsai::InputError("volume source: shape must be finite and >= 0");
+    local += s * measure;
+    for (auto d : dofmap->cell_dofs(c))
+      wa[d] += s * measure / (tdim + 1);
+  }
+  w.scatter_rev(std::plus<double>());
+  double total = 0.0;
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, mesh.comm());
+  if (!(total > 0.0))
+    throw fsai::InputError("volume source: its shape is zero on the mesh");
+  Vec b;
+  VecDuplicate(_p_vec.vec(), &b);
+  PetscScalar* r;
+  PetscInt n;
+  VecGetLocalSize(b, &n);
+  VecGetArray(b, &r);
+  for (PetscInt i = 0; i < n; ++i)
+    r[i] = wa[i] / total;
+  VecRestoreArray(b, &r);
+  _b_volume.emplace_back(b, false);
+  _volume_dQdt.push_back(0.0);
+  return _b_volume.size() - 1;
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::set_volume_source_rate(std::size_t i,
+                                                         double dQdt)
+{
+  if (i >= _volume_dQdt.size())
+    throw std::out_of_range("volume source index");
+  _volume_dQdt[i] = dQdt;
+}
+//-----------------------------------------------------------------------------
 void fsai::acoustics::WaveSolver::assemble_source(Vec b)
 {
-  // b = du/dt b_inlet + b_Lighthill + b_wall + b_slit
+  // b = du/dt b_inlet + ρ0 dQ/dt b_volume + b_Lighthill + b_wall + b_slit
   VecSet(b, 0.0);
   if (_inlet_dudt != 0.0)
     VecAXPY(b, _inlet_dudt, _b_inlet.vec());
+  for (std::size_t i = 0; i < _b_volume.size(); ++i)
+    if (_volume_dQdt[i] != 0.0)
+      VecAXPY(b, _rho0 * _volume_dQdt[i], _b_volume[i].vec());
   if (_lighthill or _vibrating or _section)
   {
     _b_assembly->set(0.0);

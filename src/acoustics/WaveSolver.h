@@ -16,6 +16,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
+#include <functional>
 #include <io/checkpoint.h>
 #include <memory>
 #include <span>
@@ -112,6 +113,18 @@ public:
   /// the time of the next step
   void set_inlet_acceleration(double dudt) { _inlet_dudt = dudt; }
 
+  /// A compact volume source, E14's right-hand side ρ0 ∂q/∂t with
+  /// q(x, t) = Q(t) ψ(x), ψ = shape/∫shape (so ∫q = Q: Q is the source's
+  /// volume rate per unit depth [m²/s] on a 2D mesh, [m³/s] in 3D). `shape`
+  /// ≥ 0 is sampled at the cell midpoints (one-point rule per cell); only
+  /// the total matters while the region is small against a wavelength.
+  /// Returns its index for set_volume_source_rate(). Throws InputError
+  /// when the shape vanishes on the whole mesh. Degree 1 only.
+  std::size_t
+  add_volume_source(const std::function<double(double, double)>& shape);
+  /// dQ/dt [m²/s² per unit depth] of source `i` at the time of the next step
+  void set_volume_source_rate(std::size_t i, double dQdt);
+
   /// Flow velocity v (P1 vector) of the Lighthill source at the next step
   dolfinx::fem::Function<double>& flow_velocity();
   /// Taper χ (P1) of the Lighthill source; 1 by default
@@ -167,6 +180,9 @@ private:
   void assemble_source(Vec b);
 
   double _dt, _t = 0.0, _beta, _gamma, _inlet_dudt = 0.0, _inlet_measure = 0.0;
+  // Volume sources: ∫ψ φ_i per source, and ρ0 dQ/dt of the next step
+  std::vector<dolfinx::la::petsc::Vector> _b_volume;
+  std::vector<double> _volume_dQdt;
   bool _lighthill, _vibrating = false, _yielding = false;
   double _wall_m, _wall_r, _wall_k; // per unit area
   double _wall_m_eff = 1.0;         // m + γΔt r + βΔt² k
