@@ -593,6 +593,10 @@ TEST_CASE("Volume source in a duct: plane waves rho0 c0 Q / 2W each way",
         == Approx(wave.rho0 * 2.0).epsilon(1e-12));
   CHECK_THROWS_AS(s.add_volume_source([](double, double) { return 0.0; }),
                   fsai::InputError);
+  // No r weight: an axisymmetric model refuses it
+  ac::WaveSolver axi(mesh, 1, true, wave, bnd, dt);
+  CHECK_THROWS_AS(axi.add_volume_source([](double, double) { return 1.0; }),
+                  fsai::InputError);
   auto Q
       = [&](double t) { return Q0 * std::exp(-std::pow((t - t0) / tau, 2)); };
   auto dQ = [&](double t) { return -2 * (t - t0) / (tau * tau) * Q(t); };

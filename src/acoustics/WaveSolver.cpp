@@ -105,16 +105,16 @@ fsai::acoustics::WaveSolver::WaveSolver(
     const WaveParameters& params, const WaveBoundaries& boundaries, double dt,
     std::shared_ptr<const fem::Function<double>> sigma, bool lighthill)
     : _dt(dt), _beta(params.newmark_beta), _gamma(params.newmark_gamma),
-      _lighthill(lighthill), _wall_m(params.wall_mass),
-      _wall_r(params.wall_resistance), _wall_k(params.wall_stiffness),
-      _M(nullptr, false), _C(nullptr, false), _K(nullptr, false),
-      _A(nullptr, false), _p_vec(nullptr, false), _v(nullptr, false),
-      _a(nullptr, false), _b_inlet(nullptr, false), _rhs(nullptr, false),
-      _work_p(nullptr, false), _work_v(nullptr, false), _wall_b(nullptr, false),
-      _wall_mask(nullptr, false), _wu(nullptr, false), _wv(nullptr, false),
-      _wa(nullptr, false), _wu_pred(nullptr, false), _wv_pred(nullptr, false),
-      _wall_work(nullptr, false), _A0(nullptr, false), _D_k(nullptr, false),
-      _solver(mesh->comm())
+      _axisymmetric(axisymmetric), _lighthill(lighthill),
+      _wall_m(params.wall_mass), _wall_r(params.wall_resistance),
+      _wall_k(params.wall_stiffness), _M(nullptr, false), _C(nullptr, false),
+      _K(nullptr, false), _A(nullptr, false), _p_vec(nullptr, false),
+      _v(nullptr, false), _a(nullptr, false), _b_inlet(nullptr, false),
+      _rhs(nullptr, false), _work_p(nullptr, false), _work_v(nullptr, false),
+      _wall_b(nullptr, false), _wall_mask(nullptr, false), _wu(nullptr, false),
+      _wv(nullptr, false), _wa(nullptr, false), _wu_pred(nullptr, false),
+      _wv_pred(nullptr, false), _wall_work(nullptr, false), _A0(nullptr, false),
+      _D_k(nullptr, false), _solver(mesh->comm())
 {
   common::ScopedTimer timer("acoustics: setup");
   params.validate();
@@ -523,6 +523,10 @@ std::size_t fsai::acoustics::WaveSolver::add_volume_source(
   const auto dofmap = _V->dofmap();
   if (dofmap->cell_dofs(0).size() != std::size_t(tdim + 1))
     throw fsai::InputError("volume source: P1 pressure only");
+  // The weights below are plain cell measures, without the r of an
+  // axisymmetric model's forms
+  if (_axisymmetric)
+    throw fsai::InputError("volume source: planar or 3D models only");
   // ∫ψ φ_i by the one-point rule: |K| ψ(centre)/(tdim + 1) to each vertex
   la::Vector<double> w(dofmap->index_map, 1);
   auto wa = w.mutable_array();
@@ -541,23 +545,20 @@ std::size_t fsai::acoustics::WaveSolver::add_volume_source(
         v[i][d] = x[3 * g[i] + d];
         centre[d] += v[i][d] / (tdim + 1);
       }
-    const double ex = v[1][0] - v[0][0], ey = v[1][1] - v[0][1],
-                 fx = v[2][0] - v[0][0], fy = v[2][1] - v[0][1];
-    double measure = 0.5 * std::abs(ex * fy - ey * fx);
-    if (tdim == 3)
-    {
-      std::array<double, 3> a, b, e;
+    // |K| = |det[v1 − v0, v2 − v0 (, v3 − v0)]| / tdim!; the z rows of a 2D
+    // mesh are zero, so its edge vectors' cross product has only a z part
+    std::array<std::array<double, 3>, 3> e{};
+    for (int i = 0; i < tdim; ++i)
       for (int d = 0; d < 3; ++d)
-      {
-        a[d] = v[1][d] - v[0][d];
-        b[d] = v[2][d] - v[0][d];
-        e[d] = v[3][d] - v[0][d];
-      }
-      measure = std::abs(a[0] * (b[1] * e[2] - b[2] * e[1])
-                         - a[1] * (b[0] * e[2] - b[2] * e[0])
-                         + a[2] * (b[0] * e[1] - b[1] * e[0]))
-                / 6.0;
-    }
+        e[i][d] = v[i + 1][d] - v[0][d];
+    const double cross_z = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+    const double measure
+        = tdim == 2
+              ? 0.5 * std::abs(cross_z)
+              : std::abs(e[2][0] * (e[0][1] * e[1][2] - e[0][2] * e[1][1])
+                         - e[2][1] * (e[0][0] * e[1][2] - e[0][2] * e[1][0])
+                         + e[2][2] * cross_z)
+                    / 6.0;
     const double s = shape(centre[0], centre[1]);
     if (!(s >= 0.0) or !std::isfinite(s))
       throw fsai::InputError("volume source: shape must be finite and >= 0");

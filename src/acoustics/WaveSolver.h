@@ -119,7 +119,8 @@ public:
   /// ≥ 0 is sampled at the cell midpoints (one-point rule per cell); only
   /// the total matters while the region is small against a wavelength.
   /// Returns its index for set_volume_source_rate(). Throws InputError
-  /// when the shape vanishes on the whole mesh. Degree 1 only.
+  /// when the shape vanishes on the whole mesh. Degree 1, planar or 3D
+  /// only (no r weight).
   std::size_t
   add_volume_source(const std::function<double(double, double)>& shape);
   /// dQ/dt [m²/s² per unit depth] of source `i` at the time of the next step
@@ -180,6 +181,7 @@ private:
   void assemble_source(Vec b);
 
   double _dt, _t = 0.0, _beta, _gamma, _inlet_dudt = 0.0, _inlet_measure = 0.0;
+  bool _axisymmetric;
   // Volume sources: ∫ψ φ_i per source, and ρ0 dQ/dt of the next step
   std::vector<dolfinx::la::petsc::Vector> _b_volume;
   std::vector<double> _volume_dQdt;
