@@ -3,7 +3,9 @@
 resolutions of flow mesh, acoustic mesh and time step, and the comparison
 runs of issue 8 — vowels a and i and the tract replaced by a short
 straight tube (default and coarse resolution), the variants of the
-monopole pair and the acoustic glottis (default resolution), and on the
+monopole pair and the acoustic glottis (default resolution), the sound's
+Newmark step without numerical damping (trapezoidal, medium and default
+resolution), and on the
 coarse resolution the Lighthill source without its taper (truncated at
 the flow outlet) and an absorbing layer instead of the Sommerfeld
 condition; and the lossless tract (rigid walls, sound-hard
@@ -26,6 +28,7 @@ import json
 import os
 import subprocess
 
+import numpy as np
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
@@ -44,10 +47,15 @@ env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 coarse = ["--fe.h_far", "1e-3", "--fe.h_gap", "0.1e-3", "--voice.h", "0.008", "--dt", "4e-5"]
 medium = ["--fe.h_far", "0.7e-3", "--fe.h_gap", "0.07e-3", "--voice.h", "0.006", "--dt", "3e-5"]
 rigid = ["--voice.yielding_walls=false", "--voice.subglottal", "hard"]
+# The sound's Newmark step without numerical damping (γ = ½, the default
+# before stop 25): the high-frequency ringing it keeps
+trapezoidal = ["--acoustics.newmark_gamma", "0.5", "--acoustics.newmark_beta", "0.25"]
 runs = {
     "u_coarse": coarse,
     "u_medium": medium,
     "u_default": [],
+    "u_medium_trapezoidal": medium + trapezoidal,
+    "u_default_trapezoidal": trapezoidal,
     "a_default": ["--vowel", "a"],
     "i_default": ["--vowel", "i"],
     "tube_default": ["--tract", "tube"],
@@ -87,6 +95,15 @@ for name, extra in runs.items():
     Fd = Fd + [float("nan")] * (2 - len(Fd))
     err = [100 * (F[k] - Ft[k]) / Ft[k] if k < len(F) else float("nan") for k in range(2)]
     derr = [100 * (F[k] - Fd[k]) / Fd[k] if k < len(F) else float("nan") for k in range(2)]
+    # The share of the microphone signal's energy above 5 kHz (t >= 50 ms):
+    # what the sound step's high-frequency ringing holds (the vowel's
+    # harmonics that matter lie below 4 kHz)
+    ser = np.genfromtxt(os.path.join(run, "series.csv"), delimiter=",", names=True)
+    win = ser["t_s"] >= 0.05
+    pm = ser["p_mic_pa"][win] - ser["p_mic_pa"][win].mean()
+    P = np.abs(np.fft.rfft(pm)) ** 2
+    fP = np.fft.rfftfreq(len(pm), ser["t_s"][1] - ser["t_s"][0])
+    hf = P[fP > 5000].sum() / P.sum() if P.sum() > 0 else float("nan")
     rows.append(dict(name=name, vowel=s["vowel"], wall_s=s["loop_wall_s"],
                      flow_dofs=s["flow_dofs"], acoustic_dofs=s["acoustic_dofs"],
                      f0_fold=s["f0_fold_hz"], f0_sound=s["f0_hz"],
@@ -97,7 +114,7 @@ for name, extra in runs.items():
                      periodic_fraction=s.get("periodic_fraction", float("nan")),
                      F1_domain=Fd[0], F2_domain=Fd[1], F1_domain_err=derr[0],
                      F2_domain_err=derr[1],
-                     spl_db=s["spl_db"], cycles=s["cycles"],
+                     spl_db=s["spl_db"], hf_share=hf, cycles=s["cycles"],
                      closes=s["closes_every_cycle"]))
     r = rows[-1]
     print(f"{name:15s} wall {r['wall_s']:7.1f} s  f0 fold {r['f0_fold']:7.2f} sound "
@@ -105,7 +122,7 @@ for name, extra in runs.items():
           f"({r['F1_err']:+.1f} %)  F2 {r['F2']:6.0f}/{r['F2_tract']:6.0f} ({r['F2_err']:+.1f} %)"
           f"  as modelled {r['F1_domain']:6.0f}/{r['F2_domain']:6.0f} "
           f"({r['F1_domain_err']:+.1f} / {r['F2_domain_err']:+.1f} %)"
-          f"  SPL {r['spl_db']:.1f} dB", flush=True)
+          f"  SPL {r['spl_db']:.1f} dB  above 5 kHz {100 * r['hf_share']:.1f} %", flush=True)
 
 if rows:
     path = os.path.join(out, "voice.csv" if not only else "voice_partial.csv")
@@ -143,7 +160,6 @@ if len(res) == 3:
 # Where it fails: the microphone signal of a variant minus the reference's
 # (same resolution, same flow: the flow is computed identically, only the
 # acoustics differ), over the analysis window t >= 50 ms
-import numpy as np
 
 
 def mic(name):

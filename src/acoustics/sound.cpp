@@ -22,23 +22,74 @@ std::vector<double> demeaned(const std::vector<double>& x)
 } // namespace
 
 //-----------------------------------------------------------------------------
-std::vector<double>
-fsai::acoustics::resample_linear(const std::vector<double>& x, double dt,
-                                 double rate)
+std::vector<double> fsai::acoustics::lowpass(const std::vector<double>& x,
+                                             double dt, double f_cut,
+                                             double f_width)
+{
+  fsai::require_positive("sampling interval", dt);
+  fsai::require_positive("low-pass cut-off", f_cut);
+  fsai::require_positive("low-pass transition width", f_width);
+  // Blackman-windowed sinc: transition ≈ 5.5/(N Δt) wide for N taps,
+  // stop band below −74 dB
+  const std::size_t half
+      = std::size_t(std::ceil(2.75 / (f_width * dt))); // N = 2 half + 1
+  std::vector<double> h(2 * half + 1);
+  const double wc = 2 * M_PI * f_cut * dt;
+  for (std::size_t k = 0; k < h.size(); ++k)
+  {
+    const double m = double(k) - double(half);
+    const double sinc = m == 0 ? wc / M_PI : std::sin(wc * m) / (M_PI * m);
+    const double u = double(k) / double(h.size() - 1);
+    h[k] = sinc
+           * (0.42 - 0.5 * std::cos(2 * M_PI * u)
+              + 0.08 * std::cos(4 * M_PI * u));
+  }
+  const double sum = std::accumulate(h.begin(), h.end(), 0.0);
+  for (double& v : h)
+    v /= sum; // unit gain at 0 Hz
+  // Zero phase (centred); beyond its ends x is mirrored (x[−k] = x[k]), so
+  // a constant stays constant and nothing at an end is amplified (rescaling
+  // a truncated kernel instead doubled an end sample's weight)
+  std::vector<double> y(x.size());
+  const std::ptrdiff_t n = std::ptrdiff_t(x.size()), hh = std::ptrdiff_t(half);
+  auto at = [&](std::ptrdiff_t j)
+  {
+    if (j < 0)
+      j = -j;
+    if (j >= n)
+      j = 2 * (n - 1) - j;
+    return x[std::clamp<std::ptrdiff_t>(j, 0, n - 1)];
+  };
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+  {
+    double acc = 0;
+    for (std::ptrdiff_t k = -hh; k <= hh; ++k)
+      acc += h[k + hh] * at(i + k);
+    y[i] = acc;
+  }
+  return y;
+}
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::acoustics::resample(const std::vector<double>& x,
+                                              double dt, double rate)
 {
   fsai::require_positive("sampling interval", dt);
   fsai::require_positive("sample rate", rate);
   if (x.size() < 2)
     return x;
-  const double T = dt * double(x.size() - 1);
+  // Anti-aliasing: what lies above the new Nyquist frequency would fold
+  // back into the band (an 18 kHz ringing read at 10 kHz lands at 2 kHz)
+  const std::vector<double> z
+      = rate < 1 / dt ? lowpass(x, dt, 0.45 * rate, 0.1 * rate) : x;
+  const double T = dt * double(z.size() - 1);
   const std::size_t n = std::size_t(std::floor(T * rate)) + 1;
   std::vector<double> y(n);
   for (std::size_t i = 0; i < n; ++i)
   {
     const double s = i / rate / dt;
-    const std::size_t k = std::min(std::size_t(s), x.size() - 2);
+    const std::size_t k = std::min(std::size_t(s), z.size() - 2);
     const double w = s - double(k);
-    y[i] = (1 - w) * x[k] + w * x[k + 1];
+    y[i] = (1 - w) * z[k] + w * z[k + 1];
   }
   return y;
 }
@@ -148,7 +199,7 @@ std::vector<double> fsai::acoustics::lpc_formants(const std::vector<double>& x,
                                                   double max_bandwidth)
 {
   const double fs = 2 * f_max;
-  std::vector<double> y = resample_linear(demeaned(x), dt, fs);
+  std::vector<double> y = resample(demeaned(x), dt, fs);
   if (int(y.size()) < 4 * order)
     return {};
   for (std::size_t i = y.size(); i-- > 1;)

@@ -9,11 +9,19 @@
 
 namespace fsai::acoustics
 {
-/// x sampled every dt, read at `rate` Hz by linear interpolation (the
-/// acoustic signals here are sampled at ≥ 50 kHz and carry < 5 kHz, so
-/// linear interpolation to 44.1 kHz changes them by < 1 %)
-std::vector<double> resample_linear(const std::vector<double>& x, double dt,
-                                    double rate);
+/// x (sampled every dt) low-passed at f_cut: a zero-phase Blackman-windowed
+/// sinc FIR whose transition band is f_width wide (about f_cut − f_width/2
+/// to f_cut + f_width/2; stop band below −74 dB), x mirrored beyond its
+/// ends
+std::vector<double> lowpass(const std::vector<double>& x, double dt,
+                            double f_cut, double f_width);
+
+/// x sampled every dt, read at `rate` Hz by linear interpolation; when
+/// that is a lower rate, x is first low-passed at 0.45 rate (transition
+/// 0.1 rate wide: anti-aliasing). Linear interpolation changes a component
+/// at f by at most (π f dt)²/2 of its amplitude
+std::vector<double> resample(const std::vector<double>& x, double dt,
+                             double rate);
 
 /// Write x as a mono 16-bit PCM WAV at `rate` Hz, mean removed, scaled so
 /// the peak is `peak` of full scale, 10 ms fade-in and -out (no clicks).
@@ -39,10 +47,10 @@ double fundamental_frequency(const std::vector<double>& x, double dt,
                              double periodicity = 0.95);
 
 /// Formants of a voiced signal by linear prediction (autocorrelation
-/// method): resampled to 2 f_max, pre-emphasis 1 − 0.97 z⁻¹, Hamming
-/// window, predictor of `order` by Levinson–Durbin, roots of the predictor
-/// polynomial (eigenvalues of its companion matrix); formants are the root
-/// angles with bandwidth < `max_bandwidth` Hz and frequency > 90 Hz, in
+/// method): resampled to 2 f_max (anti-aliased), pre-emphasis 1 − 0.97 z⁻¹,
+/// Hamming window, predictor of `order` by Levinson–Durbin, roots of the
+/// predictor polynomial (eigenvalues of its companion matrix); formants are the
+/// root angles with bandwidth < `max_bandwidth` Hz and frequency > 90 Hz, in
 /// ascending order.
 std::vector<double> lpc_formants(const std::vector<double>& x, double dt,
                                  double f_max = 5000.0, int order = 12,
