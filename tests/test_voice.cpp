@@ -211,6 +211,7 @@ TEST_CASE("Resampling to a lower rate removes what would alias", "[voice]")
   const auto u = ac::resample(x, dt, 100000);
   CHECK(std::abs(u[10] - x[5]) < 1e-12);
   CHECK_THROWS(ac::lowpass(x, dt, 0.0, 1000));
+  CHECK_THROWS(ac::lowpass(x, dt, 30000, 1000)); // above Nyquist (25 kHz)
 }
 
 TEST_CASE("WAV: 16-bit mono at 44.1 kHz, readable; disk full is an error",

@@ -29,6 +29,8 @@ std::vector<double> fsai::acoustics::lowpass(const std::vector<double>& x,
   fsai::require_positive("sampling interval", dt);
   fsai::require_positive("low-pass cut-off", f_cut);
   fsai::require_positive("low-pass transition width", f_width);
+  fsai::require(f_cut < 0.5 / dt, "low-pass cut-off",
+                "below the Nyquist frequency 1/(2 dt)", f_cut);
   // Blackman-windowed sinc: transition ≈ 5.5/(N Δt) wide for N taps,
   // stop band below −74 dB
   const std::size_t half
