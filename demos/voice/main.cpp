@@ -254,7 +254,7 @@ int main(int argc, char* argv[])
         // the slit shuts, the fold's impact) feed the ringing near 18 kHz
         // (a few cells of the radiation mesh per wavelength, 2.7 steps per
         // period): with γ = ½ it grew at each closure until it was 97 % of
-        // the sound (medium resolution: 2.6 kPa rms at 90 ms) and biased
+        // the sound (medium resolution: 2.5 kPa rms at 90 ms) and biased
         // the LPC. With γ = 0.6 a component at ωΔt = 2.3 loses 11 % of its
         // amplitude per step; the formants of [u] at Δt 2e−5 gain the
         // bandwidths 1, 16, 47 and 125 Hz (F1..F4; the 1D tract's own are
