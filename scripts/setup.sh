@@ -15,6 +15,10 @@ PACKAGES=(
   libgmsh-dev gmsh
   # Configuration, logging, tests
   libcli11-dev libtoml11-dev nlohmann-json3-dev libfmt-dev catch2
+  # Optimised BLAS/LAPACK (single-threaded: one MPI rank per core). It
+  # replaces the reference BLAS through Debian's alternatives; MUMPS's
+  # factorisation of the FE glottis flow is 1.65x faster with it
+  libopenblas0-serial
   # Signal processing and sound output
   libfftw3-dev libsndfile1-dev
   # Charts

@@ -225,7 +225,9 @@ int main(int argc, char* argv[])
               rt.comm(), profile, vf, cp, fe, setup.fluid, setup.ale,
               setup.coupling, sp.output + "/coupling.csv",
               sp.run.restart.empty() ? std::string::npos : std::size_t(k0));
-          fsai::log::info("FE flow: {} cells, {} dofs", fem->cells(),
+          const auto per_rank = fem->cells_per_rank();
+          fsai::log::info("FE flow: {} cells ({}–{} per rank), {} dofs",
+                          fem->cells(), per_rank[0], per_rank[1],
                           fem->flow_dofs());
           summary.set("flow_dofs", fem->flow_dofs());
           if (!sp.replay.empty())

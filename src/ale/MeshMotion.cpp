@@ -289,9 +289,8 @@ void fsai::ale::MeshMotion::assemble()
   MatAssemblyEnd(_A.mat(), MAT_FINAL_ASSEMBLY);
 }
 //-----------------------------------------------------------------------------
-fsai::ale::MeshQuality fsai::ale::MeshMotion::move(double t)
+void fsai::ale::MeshMotion::extend(fem::Function<double>& d)
 {
-  common::ScopedTimer timer("ale: move");
   _d_interface->x()->scatter_fwd();
   // The operator is that of the reference mesh: its lifting must be too
   auto x = _mesh->geometry().x();
@@ -314,12 +313,47 @@ fsai::ale::MeshQuality fsai::ale::MeshMotion::move(double t)
         std::vector<std::span<const double>>{}, 1.0);
     b.scatter_rev(std::plus<double>());
     fem::set_bc<double>(b.mutable_array(), _bcs);
-    la::petsc::Vector xx(la::petsc::create_vector_wrap(*_d->x()), false);
+    la::petsc::Vector xx(la::petsc::create_vector_wrap(*d.x()), false);
     la::petsc::Vector bb(la::petsc::create_vector_wrap(b), false);
     _solver.solve(xx.vec(), bb.vec());
-    _d->x()->scatter_fwd();
+    d.x()->scatter_fwd();
   }
-
+}
+//-----------------------------------------------------------------------------
+fsai::ale::MeshQuality fsai::ale::MeshMotion::move(double t)
+{
+  common::ScopedTimer timer("ale: move");
+  extend(*_d);
+  return place_and_check(t);
+}
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::ale::MeshMotion::extension()
+{
+  if (!linear())
+    throw std::runtime_error("ALE: the Jacobian-stiffened extension is not "
+                             "linear; it has no fixed extension operator");
+  common::ScopedTimer timer("ale: extension");
+  fem::Function<double> d(_V);
+  d.x()->set(0.0);
+  extend(d);
+  place_mesh(); // back to X + (the current) d
+  return std::vector<double>(d.x()->array().begin(), d.x()->array().end());
+}
+//-----------------------------------------------------------------------------
+fsai::ale::MeshQuality fsai::ale::MeshMotion::move_to(std::span<const double> d,
+                                                      double t)
+{
+  common::ScopedTimer timer("ale: move");
+  auto out = _d->x()->mutable_array();
+  if (d.size() != out.size())
+    throw std::runtime_error("ALE: move_to() needs a displacement with the "
+                             "local size of the mesh displacement");
+  std::copy(d.begin(), d.end(), out.begin());
+  return place_and_check(t);
+}
+//-----------------------------------------------------------------------------
+fsai::ale::MeshQuality fsai::ale::MeshMotion::place_and_check(double t)
+{
   place_mesh(); // x = X + d at every geometry node (owned and ghost)
 
   MeshQuality q = mesh_quality(*_mesh, _X);

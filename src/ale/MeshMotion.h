@@ -19,6 +19,7 @@
 #include <dolfinx/la/petsc.h>
 #include <io/checkpoint.h>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -115,6 +116,19 @@ public:
   /// called repeatedly within one time step (coupling iterations).
   MeshQuality move(double t);
 
+  /// Whether the extension is a fixed linear map of the interface values
+  /// (no Jacobian stiffening, which depends on the current motion)
+  bool linear() const { return _par.stiffening != "jacobian"; }
+  /// The extension of the current interface values (all local entries of
+  /// a displacement, ghosts included), without moving the mesh. For a
+  /// linear() motion a caller whose interface values are a combination of
+  /// a few fixed fields can extend each once and move by their combination
+  /// (move_to), which gives move()'s mesh to round-off without its solve
+  std::vector<double> extension();
+  /// Move the mesh to X + d for a given d (local entries, ghosts included)
+  /// and check its quality as move() does
+  MeshQuality move_to(std::span<const double> d, double t);
+
   /// Mesh velocity of the current d for the step of length dt (BDF2, or
   /// BDF1 for the first step after construction or reset)
   void velocity(dolfinx::fem::Function<double>& w, double dt) const;
@@ -143,6 +157,10 @@ public:
   }
 
 private:
+  /// d = the extension of the current interface values (the mesh is left
+  /// at the reference X)
+  void extend(dolfinx::fem::Function<double>& d);
+  MeshQuality place_and_check(double t);
   std::shared_ptr<dolfinx::mesh::Mesh> _mesh;
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;
   MeshMotionParameters _par;

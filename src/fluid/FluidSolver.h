@@ -186,12 +186,19 @@ private:
   std::shared_ptr<dolfinx::fem::Form<double>> _a, _L, _F;
   dolfinx::la::petsc::Matrix _A;
   dolfinx::la::petsc::KrylovSolver _solver;
-  /// Owned velocity-space dof blocks of a boundary, cached per facet list
-  std::map<std::vector<std::int32_t>, std::vector<std::int32_t>>
-      _boundary_blocks;
-  const std::vector<std::int32_t>&
-  owned_boundary_blocks(std::span<const std::int32_t> facets);
-  /// Weak-form residual of the current solution (owned entries summed)
-  dolfinx::la::Vector<double> residual();
+  /// A boundary on which forces are asked for: its owned velocity-space dof
+  /// blocks and the residual form restricted to the cells that hold a dof
+  /// of it (on any rank); cached per facet list
+  struct Boundary
+  {
+    std::vector<std::int32_t> blocks;
+    std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> cells;
+    std::shared_ptr<dolfinx::fem::Form<double>> residual;
+  };
+  std::map<std::vector<std::int32_t>, Boundary> _boundaries;
+  const Boundary& boundary(std::span<const std::int32_t> facets);
+  /// Weak-form residual of the current solution at the boundary's blocks
+  /// (bs entries each, owned entries summed over ranks)
+  std::vector<double> boundary_residual(const Boundary& bnd);
 };
 } // namespace fsai::fluid

@@ -57,6 +57,10 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
   p.add("closure.gap_columns", gap_columns,
         "algebraic gap motion: the columns under the fold boundary up to "
         "g0 + this times the edge radius from the axis");
+  p.add("fe.superpose_motion", superpose_motion,
+        "move the mesh by superposing three precomputed extensions of the "
+        "fold motion (exact for the linear extension) instead of solving "
+        "at every move");
   p.add_choice("coupling.predictor", predictor, {"load", "displacement"},
                "first guess of the fold state each step");
 }
@@ -232,6 +236,26 @@ fsai::glottis::FlowGlottis::FlowGlottis(
       if (0.5 * (x[3 * xg[2 * i]] + x[3 * xg[2 * i + 1]]) < g.medial_x)
         _upstream_fold_facets.push_back(_fold_facets[i]);
   }
+  if (p.superpose_motion and _motion->linear())
+  {
+    const auto axis = _fold.axis();
+    for (int k = 0; k < 3; ++k)
+    {
+      set_interface(
+          [&](const std::array<double, 2>& X) -> std::array<double, 2>
+          {
+            const double w = _profile.weight(X);
+            const double rx = X[0] - axis[0], ry = X[1] - axis[1];
+            if (k == 0)
+              return {w * rx, w * ry};
+            if (k == 1)
+              return {-w * ry, w * rx};
+            return {0.0, w};
+          });
+      _extension_basis[k] = _motion->extension();
+    }
+    _d_move.resize(_extension_basis[0].size());
+  }
   _q_n = _q_nn = _fold.q();
   std::array<double, 2> Q{0, 0};
   _fold.initialise(Q);
@@ -240,6 +264,14 @@ fsai::glottis::FlowGlottis::FlowGlottis(
 std::int64_t fsai::glottis::FlowGlottis::cells() const
 {
   return _mesh.mesh->topology().index_map(2)->size_global();
+}
+
+std::array<std::int64_t, 2> fsai::glottis::FlowGlottis::cells_per_rank() const
+{
+  const std::int64_t n = _mesh.mesh->topology().index_map(2)->size_local();
+  std::array<std::int64_t, 2> r{-n, n};
+  MPI_Allreduce(MPI_IN_PLACE, r.data(), 2, MPI_INT64_T, MPI_MAX, _comm);
+  return {-r[0], r[1]};
 }
 
 std::array<double, 2> fsai::glottis::FlowGlottis::boundary_displacement(
@@ -273,13 +305,20 @@ double fsai::glottis::FlowGlottis::boundary_lift(const RigidMotion& m) const
 
 void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
 {
-  auto a = _motion->interface_displacement().x()->mutable_array();
   const double lift = boundary_lift(m);
+  set_interface([&](const std::array<double, 2>& X)
+                { return boundary_displacement(m, X, lift); });
+}
+
+void fsai::glottis::FlowGlottis::set_interface(
+    const std::function<std::array<double, 2>(const std::array<double, 2>&)>& u)
+{
+  auto a = _motion->interface_displacement().x()->mutable_array();
   for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
   {
-    const auto u = boundary_displacement(m, _fold_X[i], lift);
-    a[2 * _fold_dofs[i]] = u[0];
-    a[2 * _fold_dofs[i] + 1] = u[1];
+    const auto ui = u(_fold_X[i]);
+    a[2 * _fold_dofs[i]] = ui[0];
+    a[2 * _fold_dofs[i] + 1] = ui[1];
   }
   // Algebraic gap motion: the column of nodes under the boundary point
   // above (between boundary nodes A and B) moves with it horizontally (the axis
@@ -291,8 +330,8 @@ void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
   // Y/U_x below the surface's φ and the cells under the superior edge invert.)
   for (std::size_t i = 0; i < _gap_dofs.size(); ++i)
   {
-    const auto ua = boundary_displacement(m, _gap_nodes[i][0], lift);
-    const auto ub = boundary_displacement(m, _gap_nodes[i][1], lift);
+    const auto ua = u(_gap_nodes[i][0]);
+    const auto ub = u(_gap_nodes[i][1]);
     const double t = _gap_t[i];
     a[2 * _gap_dofs[i]] = (1 - t) * ua[0] + t * ub[0];
     a[2 * _gap_dofs[i] + 1] = _gap_fraction[i] * ((1 - t) * ua[1] + t * ub[1]);
@@ -316,8 +355,21 @@ void fsai::glottis::FlowGlottis::mark_porous(const RigidMotion& m)
 fsai::ale::MeshQuality
 fsai::glottis::FlowGlottis::move_mesh(double t, const std::array<double, 2>& q)
 {
-  set_boundary(RigidMotion(q[0], q[1], _fold.axis()));
-  return _motion->move(t);
+  const RigidMotion m(q[0], q[1], _fold.axis());
+  if (_extension_basis[0].empty())
+  {
+    set_boundary(m);
+    return _motion->move(t);
+  }
+  // boundary_displacement(m, X, lift) = w(X) [(c − 1) r + s r⊥ + (lift − h)
+  // e_y] (RigidMotion::displacement), r = X − X_EA, r⊥ = (−r_y, r_x)
+  const double alpha[3]
+      = {std::cos(q[1]) - 1, std::sin(q[1]), boundary_lift(m) - q[0]};
+  for (std::size_t i = 0; i < _d_move.size(); ++i)
+    _d_move[i] = alpha[0] * _extension_basis[0][i]
+                 + alpha[1] * _extension_basis[1][i]
+                 + alpha[2] * _extension_basis[2][i];
+  return _motion->move_to(_d_move, t);
 }
 
 std::array<double, 2>

@@ -80,6 +80,13 @@ struct FlowGlottisParameters
   /// below the tolerance) or "displacement" (linear extrapolation of
   /// (h, φ), error O(Δt² q''): every step needs a second flow solve)
   std::string predictor = "load";
+  /// Move the mesh by superposition: the fluid boundary's displacement
+  /// (tapered rigid motion plus lift, and the algebraic gap columns that
+  /// follow it) is (cos φ − 1) B₁ + sin φ B₂ + (lift − h) B₃ for three
+  /// fixed fields B, so a linear extension of it is the same combination
+  /// of their three extensions, computed once (no solve per move). Off:
+  /// solve the extension at every move (the same mesh to round-off)
+  bool superpose_motion = true;
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };
@@ -139,6 +146,8 @@ public:
   const ale::MeshMotion& motion() const { return *_motion; }
   std::int64_t flow_dofs() const { return _flow->dofs(); }
   std::int64_t cells() const;
+  /// Fewest and most cells owned by one rank (collective)
+  std::array<std::int64_t, 2> cells_per_rank() const;
   /// Reference (rest) coordinates of the velocity dof blocks, owned and
   /// ghost, 3 per block
   const std::vector<double>& reference_coordinates() const { return _X_ref; }
@@ -148,6 +157,14 @@ private:
   std::array<double, 2> evaluate(double t, const std::array<double, 2>& q,
                                  Sample& s);
   void set_boundary(const RigidMotion& m);
+  /// Interface values of the mesh motion (fold nodes and gap columns) for
+  /// a displacement u(X) of the fold surface's reference points
+  void set_interface(
+      const std::function<std::array<double, 2>(const std::array<double, 2>&)>&
+          u);
+  /// Extensions of the three fields B of superpose_motion (empty: off)
+  std::array<std::vector<double>, 3> _extension_basis;
+  std::vector<double> _d_move; // their combination, for move_to()
   void mark_porous(const RigidMotion& m);
 
   MPI_Comm _comm;
