@@ -148,3 +148,30 @@ TEST_CASE("CsvWriter and checkpoints report a full disk", "[io]")
   CHECK_THROWS_WITH(fsai::io::read_checkpoint(MPI_COMM_SELF, dir + "/none"),
                     Catch::Matchers::Contains("no checkpoint"));
 }
+
+TEST_CASE("Restart parameters: changed values refuse, new ones are reported",
+          "[io]")
+{
+  const nlohmann::json saved = {{"dt", 1e-5},
+                                {"output", "a"},
+                                {"duration", 0.1},
+                                {"fe", {{"h_gap", 3.5e-5}, {"old", 1}}}};
+  nlohmann::json current = saved;
+  current["output"] = "b";     // may differ
+  current["duration"] = 0.2;   // may differ (a longer run)
+  current["fe"].erase("old");  // removed from the code since
+  current["fe"]["new"] = true; // added to the code since
+  current["fluid"] = {{"x", 2}};
+  auto d = fsai::io::compare_parameters(saved, current);
+  CHECK(d.changed.empty());
+  REQUIRE(d.added.size() == 2);
+  CHECK(d.added[0].first == "/fe/new");
+  CHECK(d.added[0].second == true);
+  CHECK(d.added[1].first == "/fluid");
+  REQUIRE(d.removed.size() == 1);
+  CHECK(d.removed[0] == "/fe/old");
+  current["dt"] = 2e-5;
+  d = fsai::io::compare_parameters(saved, current);
+  REQUIRE(d.changed.size() == 1);
+  CHECK(d.changed[0] == "/dt");
+}

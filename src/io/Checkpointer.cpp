@@ -2,6 +2,7 @@
 #include "Checkpointer.h"
 #include "../common/Parameters.h"
 #include "../common/errors.h"
+#include "../common/log.h"
 #include "../common/timer.h"
 #include "field_state.h"
 #include <csignal>
@@ -40,13 +41,23 @@ fsai::io::Checkpointer::Checkpointer(MPI_Comm comm, std::string dir,
 void fsai::io::Checkpointer::read()
 {
   _meta = read_checkpoint(_comm, _dir + "/checkpoint.json");
-  const std::string changed
-      = first_changed_parameter(_meta.at("parameters"), _parameters);
-  if (!changed.empty())
+  const auto diff = compare_parameters(_meta.at("parameters"), _parameters);
+  if (!diff.changed.empty())
   {
-    throw InputError("restart: parameter " + changed
+    throw InputError("restart: parameter " + diff.changed.front()
                      + " differs from the checkpointed run");
   }
+  // A checkpoint written before a parameter existed ran as if it had its
+  // default: the restart says which values it assumes rather than refusing
+  // every checkpoint older than the code
+  for (const auto& [path, value] : diff.added)
+    log::warn("restart: parameter {} is not in the checkpoint (written by an "
+              "older version); using {}",
+              path, value.dump());
+  for (const auto& path : diff.removed)
+    log::warn("restart: the checkpoint's parameter {} is no longer known; "
+              "ignored",
+              path);
   _stem = _meta.value("fields", std::string());
   if (!_stem.empty())
     _fields = read_all_rank_states(_comm, _dir + "/" + _stem,

@@ -215,15 +215,24 @@ nlohmann::json fsai::io::read_checkpoint(MPI_Comm comm, const std::string& path)
   return nlohmann::json::parse(text);
 }
 
-std::string fsai::io::first_changed_parameter(nlohmann::json saved,
-                                              nlohmann::json current)
+fsai::io::ParameterChanges fsai::io::compare_parameters(nlohmann::json saved,
+                                                        nlohmann::json current)
 {
   for (auto* j : {&saved, &current})
     for (const char* key :
          {"output", "restart", "checkpoint-every", "duration", "debug"})
       j->erase(key);
-  const auto diff = nlohmann::json::diff(saved, current);
-  if (diff.empty())
-    return "";
-  return diff[0].value("path", std::string("?"));
+  ParameterChanges out;
+  for (const auto& op : nlohmann::json::diff(saved, current))
+  {
+    const std::string path = op.value("path", std::string("?"));
+    const std::string kind = op.value("op", std::string());
+    if (kind == "add")
+      out.added.push_back({path, op.value("value", nlohmann::json())});
+    else if (kind == "remove")
+      out.removed.push_back(path);
+    else
+      out.changed.push_back(path);
+  }
+  return out;
 }

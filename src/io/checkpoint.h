@@ -9,6 +9,7 @@
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fsai::io
@@ -53,9 +54,17 @@ const std::vector<double>& state_entry(const RankState& state,
 /// lowest such rank's message): restores that fail on one rank only
 void throw_if_any_rank(MPI_Comm comm, const std::string& error);
 
-/// Parameters that may differ between a run and its restart (output,
-/// restart and checkpoint options, the simulated duration) are removed;
-/// returns the first parameter whose value differs ("" if none)
-std::string first_changed_parameter(nlohmann::json saved,
+/// How a restart's parameters differ from the checkpointed run's, as JSON
+/// pointers ("/fluid/rho"). Parameters that may differ (output, restart and
+/// checkpoint options, the simulated duration) are left out.
+struct ParameterChanges
+{
+  std::vector<std::string> changed; ///< in both, different values: an error
+  /// only in the restart: added to the code since the checkpoint was
+  /// written (their current values are used), with those values
+  std::vector<std::pair<std::string, nlohmann::json>> added;
+  std::vector<std::string> removed; ///< only in the checkpoint
+};
+ParameterChanges compare_parameters(nlohmann::json saved,
                                     nlohmann::json current);
 } // namespace fsai::io

@@ -5,10 +5,81 @@
 #include <glottis/FoldProfile.h>
 #include <gmsh.h>
 
-fsai::mesh::MeshData
-fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
-                            double h_far, double h_gap, double fine_height,
-                            double grading, double h_jet, double jet_height)
+namespace
+{
+/// The channel (and with `with_fold` the fold's own surface, bounded by
+/// the shared fold curve and its lateral attachment at y = H) in the
+/// current gmsh model, meshed
+void build_channel(const fsai::glottis::FoldProfile& profile, double h_far,
+                   double h_gap, double fine_height, double grading,
+                   double h_jet, double jet_height, bool with_fold)
+{
+  using namespace fsai::mesh;
+  namespace geo = gmsh::model::geo;
+  const auto& g = profile.geometry();
+  gmsh::model::add("glottis_channel");
+  const double H = g.half_height, x0 = -g.inlet_length,
+               x1 = g.fold_length + g.outlet_length;
+  const int p_in0 = geo::addPoint(x0, 0, 0);
+  const int p_out0 = geo::addPoint(x1, 0, 0);
+  const int p_out1 = geo::addPoint(x1, H, 0);
+  const int p_sup = geo::addPoint(g.fold_length, H, 0);
+  // The fold surface, superior attachment to inferior (the domain
+  // boundary runs counter-clockwise), through every 2nd profile point
+  const auto& pts = profile.points();
+  std::vector<int> spline = {p_sup};
+  for (int i = int(pts.size()) - 3; i >= 2; i -= 2)
+    spline.push_back(geo::addPoint(pts[i][0], pts[i][1], 0));
+  const int p_inf = geo::addPoint(0, H, 0);
+  spline.push_back(p_inf);
+  const int p_in1 = geo::addPoint(x0, H, 0);
+  const int axis = geo::addLine(p_in0, p_out0);
+  const int outlet = geo::addLine(p_out0, p_out1);
+  const int wall_sup = geo::addLine(p_out1, p_sup);
+  const int fold = geo::addSpline(spline);
+  const int wall_inf = geo::addLine(p_inf, p_in1);
+  const int inlet = geo::addLine(p_in1, p_in0);
+  const int loop
+      = geo::addCurveLoop({axis, outlet, wall_sup, fold, wall_inf, inlet});
+  const int surface = geo::addPlaneSurface({loop});
+  int attachment = -1, fold_surface = -1;
+  if (with_fold)
+  {
+    attachment = geo::addLine(p_inf, p_sup);
+    fold_surface
+        = geo::addPlaneSurface({geo::addCurveLoop({fold, attachment})});
+  }
+  geo::synchronize();
+  int id = 1;
+  std::vector<std::pair<const char*, std::vector<int>>> groups
+      = {{"inlet", {inlet}},
+         {"outlet", {outlet}},
+         {"axis", {axis}},
+         {"wall", {wall_sup, wall_inf}},
+         {"fold", {fold}}};
+  if (with_fold)
+    groups.push_back({"attachment", {attachment}});
+  for (const auto& [name, tags] : groups)
+  {
+    gmsh::model::addPhysicalGroup(1, tags, id);
+    gmsh::model::setPhysicalName(1, id++, name);
+  }
+  gmsh::model::addPhysicalGroup(2, {surface}, 1);
+  gmsh::model::setPhysicalName(2, 1, "fluid");
+  if (with_fold)
+  {
+    gmsh::model::addPhysicalGroup(2, {fold_surface}, 2);
+    gmsh::model::setPhysicalName(2, 2, "fold");
+  }
+  size_near_curves({fold}, h_gap, h_far, grading, 1000,
+                   fine_height > 0 ? SizeBand{{axis}, fine_height} : SizeBand{},
+                   SizeBox{h_jet, {0, x1, 0, jet_height}, grading});
+  gmsh::option::setNumber("Mesh.Algorithm", 6);
+  gmsh::model::mesh::generate(2);
+}
+
+void check_sizes(const fsai::glottis::FoldProfile& profile, double h_far,
+                 double h_gap, double h_jet)
 {
   const auto& g = profile.geometry();
   fsai::require(h_gap > 0 and h_gap <= g.rest_gap, "--fe.h_gap",
@@ -17,55 +88,32 @@ fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
                 "in [h_gap, half_height/2]", h_far);
   fsai::require(h_jet == 0 or (h_jet >= h_gap and h_jet <= h_far), "--fe.h_jet",
                 "0 or in [h_gap, h_far]", h_jet);
-  return build_with_gmsh(
+}
+} // namespace
+
+fsai::mesh::MeshData
+fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
+                            double h_far, double h_gap, double fine_height,
+                            double grading, double h_jet, double jet_height)
+{
+  check_sizes(profile, h_far, h_gap, h_jet);
+  return build_with_gmsh(comm, 2,
+                         [&]()
+                         {
+                           build_channel(profile, h_far, h_gap, fine_height,
+                                         grading, h_jet, jet_height, false);
+                         });
+}
+
+fsai::mesh::FluidSolidMeshes
+fsai::mesh::glottis_channel_and_fold(MPI_Comm comm,
+                                     const glottis::FoldProfile& profile,
+                                     double h_far, double h_gap, double grading)
+{
+  check_sizes(profile, h_far, h_gap, 0.0);
+  auto parts = build_parts_with_gmsh(
       comm, 2,
-      [&]()
-      {
-        namespace geo = gmsh::model::geo;
-        gmsh::model::add("glottis_channel");
-        const double H = g.half_height, x0 = -g.inlet_length,
-                     x1 = g.fold_length + g.outlet_length;
-        const int p_in0 = geo::addPoint(x0, 0, 0);
-        const int p_out0 = geo::addPoint(x1, 0, 0);
-        const int p_out1 = geo::addPoint(x1, H, 0);
-        const int p_sup = geo::addPoint(g.fold_length, H, 0);
-        // The fold surface, superior attachment to inferior (the domain
-        // boundary runs counter-clockwise), through every 2nd profile point
-        const auto& pts = profile.points();
-        std::vector<int> spline = {p_sup};
-        for (int i = int(pts.size()) - 3; i >= 2; i -= 2)
-          spline.push_back(geo::addPoint(pts[i][0], pts[i][1], 0));
-        const int p_inf = geo::addPoint(0, H, 0);
-        spline.push_back(p_inf);
-        const int p_in1 = geo::addPoint(x0, H, 0);
-        const int axis = geo::addLine(p_in0, p_out0);
-        const int outlet = geo::addLine(p_out0, p_out1);
-        const int wall_sup = geo::addLine(p_out1, p_sup);
-        const int fold = geo::addSpline(spline);
-        const int wall_inf = geo::addLine(p_inf, p_in1);
-        const int inlet = geo::addLine(p_in1, p_in0);
-        const int loop = geo::addCurveLoop(
-            {axis, outlet, wall_sup, fold, wall_inf, inlet});
-        const int surface = geo::addPlaneSurface({loop});
-        geo::synchronize();
-        int id = 1;
-        for (auto [name, tags] :
-             {std::pair<const char*, std::vector<int>>{"inlet", {inlet}},
-              {"outlet", {outlet}},
-              {"axis", {axis}},
-              {"wall", {wall_sup, wall_inf}},
-              {"fold", {fold}}})
-        {
-          gmsh::model::addPhysicalGroup(1, tags, id);
-          gmsh::model::setPhysicalName(1, id++, name);
-        }
-        gmsh::model::addPhysicalGroup(2, {surface}, 1);
-        gmsh::model::setPhysicalName(2, 1, "fluid");
-        size_near_curves({fold}, h_gap, h_far, grading, 1000,
-                         fine_height > 0 ? SizeBand{{axis}, fine_height}
-                                         : SizeBand{},
-                         SizeBox{h_jet, {0, x1, 0, jet_height}, grading});
-        gmsh::option::setNumber("Mesh.Algorithm", 6);
-        gmsh::model::mesh::generate(2);
-      });
+      [&]() { build_channel(profile, h_far, h_gap, 0, grading, 0, 0, true); },
+      {"fluid", "fold"});
+  return {std::move(parts[0]), std::move(parts[1])};
 }

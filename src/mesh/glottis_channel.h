@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #pragma once
 #include "MeshData.h"
+#include "benchmarks.h"
 #include <mpi.h>
 
 namespace fsai::glottis
@@ -26,4 +27,15 @@ MeshData glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
                          double h_far, double h_gap, double fine_height = 0,
                          double grading = 3e-3, double h_jet = 0,
                          double jet_height = 0);
+
+/// The same channel (no fine band, no jet box) and the fold itself as one
+/// gmsh model, so that the two meshes have the same nodes on the fold
+/// curve: `fluid` as above, `solid` the fold (cell group "fold") between
+/// the curve "fold" and its lateral attachment "attachment" (y = H, from
+/// the inferior to the superior attachment point), meshed with the same
+/// size field (h_gap at the surface)
+FluidSolidMeshes glottis_channel_and_fold(MPI_Comm comm,
+                                          const glottis::FoldProfile& profile,
+                                          double h_far, double h_gap,
+                                          double grading = 3e-3);
 } // namespace fsai::mesh
