@@ -69,8 +69,9 @@ CASES = {
     # its time-step check (Δt/2, the first 0.06 s)
     "dt05_z02_c75": (0.06, ["--dt", "5e-6", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]),
     # its mesh check (stop 23): h_gap 0.025 mm, h_far 0.25 mm (the later
-    # options override MESH), the first 0.06 s
-    "h025_dt1_z02_c75": (0.06, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+    # options override MESH), the first 0.06 s; continued to 0.1 s in stop
+    # 26 from its step-6000 checkpoint (--restart, log run_restart.log)
+    "h025_dt1_z02_c75": (0.1, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
                                 "--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
                                 "--checkpoint-every", "2000"]),
 }

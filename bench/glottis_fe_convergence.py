@@ -58,7 +58,9 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
                                 ("h 0.025 mm", "run_glottis_h025_dt1_z02_c75"),
                                 ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26")),
         "closing, h 0.035 mm, settled": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
-                                         ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26"))}
+                                         ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26"),
+                                         # continued from 0.06 to 0.1 s in stop 26
+                                         ("h 0.025 mm", "run_glottis_h025_dt1_z02_c75"))}
 
 
 def stats(run, t0, t1):

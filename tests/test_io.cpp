@@ -57,6 +57,9 @@ TEST_CASE("Progress estimates time left linearly", "[io]")
 {
   CHECK(fsai::io::Progress::eta(25, 100, 10.0) == Approx(30.0));
   CHECK(std::isnan(fsai::io::Progress::eta(0, 100, 1.0)));
+  // A restart from step 60: 5 steps in 10 s leave 35 steps, 70 s
+  CHECK(fsai::io::Progress::eta(65, 100, 10.0, 60) == Approx(70.0));
+  CHECK(std::isnan(fsai::io::Progress::eta(60, 100, 1.0, 60)));
   CHECK(fsai::io::Progress::format_duration(12.34) == "12.3s");
   CHECK(fsai::io::Progress::format_duration(187) == "3m07s");
   CHECK(fsai::io::Progress::format_duration(3720) == "1h02m");

@@ -319,7 +319,7 @@ int main(int argc, char* argv[])
           csv = std::make_unique<fsai::io::CsvWriter>(
               rt.comm(), sp.output + "/series.csv", columns);
         }
-        fsai::io::Progress progress("step", double(n), 5.0);
+        fsai::io::Progress progress("step", double(n), 5.0, double(k0));
         {
           fsai::common::ScopedTimer timer("glottis: time loop");
           const auto loop0 = std::chrono::steady_clock::now();

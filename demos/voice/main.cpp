@@ -602,7 +602,7 @@ int main(int argc, char* argv[])
           csv = std::make_unique<fsai::io::CsvWriter>(
               rt.comm(), vp.output + "/series.csv", columns);
         }
-        fsai::io::Progress progress("step", double(n), 5.0);
+        fsai::io::Progress progress("step", double(n), 5.0, double(k0));
         std::array<double, 2> qdot_prev = fem->fold().qdot();
         double q_monopole = Q.empty() ? 0.0 : Q.back(); // last converged Q
         std::vector<double> slit_inertia(section_cells.size(), 1.0),

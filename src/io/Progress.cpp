@@ -6,17 +6,19 @@
 using clock_type = std::chrono::steady_clock;
 
 //-----------------------------------------------------------------------------
-fsai::io::Progress::Progress(std::string label, double total, double interval_s)
+fsai::io::Progress::Progress(std::string label, double total, double interval_s,
+                             double start)
     : _label(std::move(label)), _total(total), _interval(interval_s),
-      _start(clock_type::now()), _last(_start)
+      _start_done(start), _start(clock_type::now()), _last(_start)
 {
 }
 //-----------------------------------------------------------------------------
-double fsai::io::Progress::eta(double done, double total, double elapsed)
+double fsai::io::Progress::eta(double done, double total, double elapsed,
+                               double start)
 {
-  if (done <= 0.0)
+  if (done <= start)
     return NAN;
-  return elapsed * (total - done) / done;
+  return elapsed * (total - done) / (done - start);
 }
 //-----------------------------------------------------------------------------
 std::string fsai::io::Progress::format_duration(double s)
@@ -46,7 +48,7 @@ bool fsai::io::Progress::update(double done, const std::string& extra)
   log::info("[{:3.0f}%] {} {:.6g}/{:.6g}  elapsed {}  ETA {}{}{}",
             100.0 * done / _total, _label, done, _total,
             format_duration(elapsed),
-            format_duration(eta(done, _total, elapsed)),
+            format_duration(eta(done, _total, elapsed, _start_done)),
             extra.empty() ? "" : "  ", extra);
   return true;
 }
