@@ -215,26 +215,41 @@ TEST_CASE("Reduced model: stable below onset, self-sustained closing "
   CHECK(std::abs(cs.f0_hz / high.frequency_hz[0] - 1) < 0.1);
 }
 
+namespace
+{
+// Coarse FE glottis mesh with a fast pressure ramp, so that the fold moves
+// within 4 ms
+FlowGlottisSetup coarse_fast_setup()
+{
+  FlowGlottisSetup setup;
+  setup.fe.h_far = 1e-3;
+  setup.fe.h_gap = 0.1e-3;
+  setup.fe.ramp = 1e-3;
+  return setup;
+}
+
+std::vector<Sample> steps(FlowGlottis& scene, int n)
+{
+  std::vector<Sample> out;
+  for (int k = 0; k < n; ++k)
+    out.push_back(scene.step());
+  return out;
+}
+} // namespace
+
 TEST_CASE("FE glottis: the load predictor saves the second flow solve, same "
           "solution",
           "[glottis]")
 {
-  // Coarse mesh, fast pressure ramp so that the fold moves within 4 ms
   auto run = [](const std::string& predictor)
   {
-    FlowGlottisSetup setup;
-    setup.fe.h_far = 1e-3;
-    setup.fe.h_gap = 0.1e-3;
-    setup.fe.ramp = 1e-3;
+    FlowGlottisSetup setup = coarse_fast_setup();
     setup.fe.predictor = predictor;
     setup.validate(1200, 2e-5);
     const FoldProfile profile(setup.geometry);
     FlowGlottis scene(MPI_COMM_WORLD, profile, setup.fold, setup.contact,
                       setup.fe, setup.fluid, setup.ale, setup.coupling, "");
-    std::vector<Sample> out;
-    for (int k = 0; k < 200; ++k)
-      out.push_back(scene.step());
-    return out;
+    return steps(scene, 200);
   };
   const auto d = run("displacement"), l = run("load");
   double dg = 0, dq = 0, gmax = 0, qmax = 0, it_d = 0, it_l = 0;
@@ -271,18 +286,13 @@ TEST_CASE("FE glottis: the mesh moved by superposed extensions is the solved "
   // moves within 4 ms, and at one large state (rotation, penetration)
   auto run = [](bool superpose)
   {
-    FlowGlottisSetup setup;
-    setup.fe.h_far = 1e-3;
-    setup.fe.h_gap = 0.1e-3;
-    setup.fe.ramp = 1e-3;
+    FlowGlottisSetup setup = coarse_fast_setup();
     setup.fe.superpose_motion = superpose;
     setup.validate(1200, 2e-5);
     const FoldProfile profile(setup.geometry);
     FlowGlottis scene(MPI_COMM_WORLD, profile, setup.fold, setup.contact,
                       setup.fe, setup.fluid, setup.ale, setup.coupling, "");
-    std::vector<Sample> out;
-    for (int k = 0; k < 200; ++k)
-      out.push_back(scene.step());
+    const auto out = steps(scene, 200);
     // A state far from rest: the fold 0.1 mm across the axis, rotated
     const auto q = scene.move_mesh(out.back().t, {0.3e-3, 0.15});
     return std::pair{out, q.min_scaled_jacobian};

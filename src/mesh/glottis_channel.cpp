@@ -5,6 +5,16 @@
 #include <glottis/FoldProfile.h>
 #include <gmsh.h>
 
+std::vector<int>
+fsai::mesh::add_fold_points(const glottis::FoldProfile& profile)
+{
+  const auto& pts = profile.points();
+  std::vector<int> tags;
+  for (int i = int(pts.size()) - 3; i >= 2; i -= 2)
+    tags.push_back(gmsh::model::geo::addPoint(pts[i][0], pts[i][1], 0));
+  return tags;
+}
+
 namespace
 {
 /// The channel (and with `with_fold` the fold's own surface, bounded by
@@ -25,11 +35,10 @@ void build_channel(const fsai::glottis::FoldProfile& profile, double h_far,
   const int p_out1 = geo::addPoint(x1, H, 0);
   const int p_sup = geo::addPoint(g.fold_length, H, 0);
   // The fold surface, superior attachment to inferior (the domain
-  // boundary runs counter-clockwise), through every 2nd profile point
-  const auto& pts = profile.points();
+  // boundary runs counter-clockwise)
   std::vector<int> spline = {p_sup};
-  for (int i = int(pts.size()) - 3; i >= 2; i -= 2)
-    spline.push_back(geo::addPoint(pts[i][0], pts[i][1], 0));
+  for (int p : add_fold_points(profile))
+    spline.push_back(p);
   const int p_inf = geo::addPoint(0, H, 0);
   spline.push_back(p_inf);
   const int p_in1 = geo::addPoint(x0, H, 0);

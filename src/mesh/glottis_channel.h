@@ -3,6 +3,7 @@
 #include "MeshData.h"
 #include "benchmarks.h"
 #include <mpi.h>
+#include <vector>
 
 namespace fsai::glottis
 {
@@ -27,6 +28,12 @@ MeshData glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
                          double h_far, double h_gap, double fine_height = 0,
                          double grading = 3e-3, double h_jet = 0,
                          double jet_height = 0);
+
+/// Points (in the current gmsh geo model) of the fold curve between its
+/// attachments, superior to inferior, through every 2nd profile point: the
+/// one definition of the fold curve of every mesh of the glottis scenes
+/// (flow, fold, acoustic domain), which must have the same nodes on it
+std::vector<int> add_fold_points(const glottis::FoldProfile& profile);
 
 /// The same channel (no fine band, no jet box) and the fold itself as one
 /// gmsh model, so that the two meshes have the same nodes on the fold

@@ -1,5 +1,6 @@
 // Copyright (C) 2026 fsai developers
 #include "voice_domain.h"
+#include "glottis_channel.h"
 #include "gmsh_model.h"
 #include <algorithm>
 #include <cmath>
@@ -161,8 +162,8 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
         const int p_out1 = geo::addPoint(x1, H, 0);
         const int p_sup = geo::addPoint(T, H, 0);
         std::vector<int> spline = {p_sup};
-        for (int i = int(pts.size()) - 3; i >= 2; i -= 2)
-          spline.push_back(geo::addPoint(pts[i][0], pts[i][1], 0));
+        for (int p : add_fold_points(profile))
+          spline.push_back(p);
         const int p_inf = geo::addPoint(0, H, 0);
         spline.push_back(p_inf);
         const int p_in1 = geo::addPoint(x0, H, 0);
