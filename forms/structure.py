@@ -14,9 +14,18 @@
 # the residual for the new displacement u is
 #   R(u; w) = d [ (ρ a, w) + ε1 (ρ v, w) + ε2 (σ_lin(v), ∇w) ]
 #             + (F S, ∇w) − (ρ g, w) − s (T, w)_Γ_T
+#             − (p_c e_y, w)_Γ_T
 # with d = 1 (dynamic) or 0 (static; load factor s scales g and T for load
-# stepping). J = ∂R/∂u by UFL differentiation. Materials are cell-wise (DG0
-# λ, μ, ρ), so layered folds (body/cover) need no extra forms.
+# stepping). J = ∂R/∂u by UFL differentiation.
+#
+# Contact with the plane y = y_c (the symmetry axis of the glottis scene,
+# where the two folds meet): a penalty pressure on the loaded boundary
+#   p_c = k_c δ max(0, 1 + b_c δ̇ d),   δ = max(0, y_c − (X_y + u_y)),
+# δ̇ = −v_y (Hunt–Crossley damping, never adhesive). It is part of R, so
+# Newton treats the contact implicitly; k_c = 0 (the default) removes it.
+#
+# Materials are cell-wise (DG0 λ, μ, ρ), so layered folds (body/cover) need
+# no extra forms.
 #
 # Modal analysis: K (linear stiffness) and M (mass) as bilinear forms.
 import ufl
@@ -51,6 +60,10 @@ dynamic = ufl.Constant(mesh)     # 1: Newmark, 0: static
 nonlinear = ufl.Constant(mesh)   # 1: St.Venant–Kirchhoff, 0: linear
 load = ufl.Constant(mesh)        # load factor s
 g = ufl.Constant(mesh, shape=(dim(),))  # body acceleration [m/s²]
+k_c = ufl.Constant(mesh)         # contact penalty [Pa/m] (0: no contact)
+b_c = ufl.Constant(mesh)         # contact damping [s/m]
+y_c = ufl.Constant(mesh)         # contact plane y = y_c [m]
+X = ufl.SpatialCoordinate(mesh)
 
 I = Identity(dim())
 
@@ -71,15 +84,23 @@ E = sym(H) + nonlinear * 0.5 * H.T * H
 S = lmbda * tr(E) * I + 2 * mu * E
 P = (I + nonlinear * H) * S
 
+# Contact pressure on the plane y = y_c
+delta = ufl.max_value(y_c - (X[1] + u[1]), 0.0)
+p_c = k_c * delta * ufl.max_value(1.0 + b_c * dynamic * (-v[1]), 0.0)
+
 R = (dynamic * (rho * inner(a, w) + eps1 * rho * inner(v, w)
                 + eps2 * inner(sigma_lin(v), grad(w))) * dx
      + inner(P, grad(w)) * dx
      - load * rho * inner(g, w) * dx
-     - load * inner(traction, w) * ds(1))
+     - load * inner(traction, w) * ds(1)
+     - p_c * w[1] * ds(1))
 J = derivative(R, u, du)
+
+# Total contact force along +y on the loaded boundary (per unit depth in 2D)
+contact_force = p_c * ds(1)
 
 # Modal analysis and diagnostics
 k = inner(sigma_lin(du), grad(w)) * dx
 m = rho * inner(du, w) * dx
 
-forms = [R, J, k, m]
+forms = [R, J, k, m, contact_force]

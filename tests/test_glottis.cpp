@@ -11,6 +11,7 @@
 #include <common/mpi_gather.h>
 #include <dolfinx/mesh/utils.h>
 #include <glottis/BernoulliGlottis.h>
+#include <glottis/ElasticBernoulliGlottis.h>
 #include <glottis/FlowGlottis.h>
 #include <glottis/waveform.h>
 #include <mesh/glottis_channel.h>
@@ -154,6 +155,71 @@ TEST_CASE("Bernoulli load: closed-form cases", "[glottis]")
                      1.2);
   CHECK(s.Q == 0);
   CHECK(s.min_gap < 0);
+}
+
+TEST_CASE("Viscous Bernoulli load: Poiseuille and inviscid limits, "
+          "continuous through closure",
+          "[glottis]")
+{
+  const double Lg = 18e-3, mu = 1.8e-5, dp = 800;
+  // A channel of half-gap y over length L between two wide ends: with ρ → 0
+  // the Poiseuille law dp = 12 μ Q L / (L_g (2y)³)
+  const double y = 50e-6, L = 2e-3;
+  std::vector<std::array<double, 2>> x;
+  x.push_back({-1e-3, 5e-3});
+  for (int i = 0; i <= 20; ++i)
+    x.push_back({i * L / 20, y});
+  x.push_back({L + 1e-3, 5e-3});
+  auto s = viscous_surface_pressure(x, Lg, dp, 0, 1e-12, 1.2, mu, 1e-9, 0);
+  const double Q_p = dp * Lg * std::pow(2 * y, 3) / (12 * mu * L);
+  // The entry segment (y from 5 mm to 50 µm) adds its own small loss
+  CHECK(s.Q == Approx(Q_p).epsilon(0.02));
+  CHECK(s.Q < Q_p);
+  // Without viscosity: Bernoulli's jet, Q = 2 L_g y_s √(2 Δp/ρ)
+  s = viscous_surface_pressure(x, Lg, dp, 0, 1.2, 1.2, 1e-15, 1e-9, 0);
+  const auto s0 = surface_pressure(x, Lg, dp, 0, 1.2, 1.2);
+  CHECK(s.Q == Approx(s0.Q).epsilon(1e-6));
+  CHECK(s.Q
+        == Approx(2 * Lg * 1.2 * y * std::sqrt(2 * dp / 1.2)).epsilon(1e-6));
+  // Moving a rippled strip through the axis (contact): the largest change
+  // of any pressure between neighbouring positions halves with the spacing
+  // (continuous), where the inviscid law keeps a jump of order Δp at y = 0
+  auto moved = [&](double yc)
+  {
+    auto z = x;
+    for (std::size_t i = 1; i + 1 < z.size(); ++i)
+      z[i][1] = yc + 1e-6 * std::sin(7.0 * i);
+    return z;
+  };
+  double Q_closed = 1;
+  auto sweep = [&](double step, bool viscous)
+  {
+    double worst = 0;
+    auto eval = [&](double yc)
+    {
+      return viscous ? viscous_surface_pressure(moved(yc), Lg, dp, 0, 1.2, 1.2,
+                                                mu, 0.2e-6, 20e-6)
+                     : surface_pressure(moved(yc), Lg, dp, 0, 1.2, 1.2);
+    };
+    auto prev = eval(3e-6);
+    for (double yc = 3e-6 - step; yc > -3e-6; yc -= step)
+    {
+      const auto c = eval(yc);
+      for (std::size_t i = 0; i < c.p.size(); ++i)
+        worst = std::max(worst, std::abs(c.p[i] - prev.p[i]) / dp);
+      prev = c;
+    }
+    Q_closed = prev.Q;
+    return worst;
+  };
+  const double w1 = sweep(4e-9, true), w2 = sweep(2e-9, true);
+  CHECK(w2 < 0.6 * w1);
+  CHECK(w2 < 0.01);
+  CHECK(Q_closed < 1e-9); // closed: a negligible leak through y_floor
+  const double i1 = sweep(4e-9, false), i2 = sweep(2e-9, false);
+  CHECK(std::min(i1, i2) > 0.3);
+  WARN("largest pressure change / dp per 4 and 2 nm: viscous "
+       << w1 << ", " << w2 << "; inviscid " << i1 << ", " << i2);
 }
 
 TEST_CASE("Limit-cycle measures of a known waveform", "[glottis]")
@@ -377,4 +443,43 @@ TEST_CASE("Elastic fold of the glottis scene: the flow's fold nodes, "
   WARN("elastic fold (plane strain, E 8 kPa, nu 0.4), f1..f3: coarse "
        << fc[0] << ", " << fc[1] << ", " << fc[2] << " Hz; fine " << ff[0]
        << ", " << ff[1] << ", " << ff[2] << " Hz");
+}
+
+TEST_CASE("Elastic fold with the Bernoulli flow: self-sustained oscillation "
+          "closing the glottis",
+          "[glottis]")
+{
+  // --fold elastic --flow bernoulli with its defaults at p_sub 1.2 kPa
+  const FoldProfile profile(GlottisGeometry{});
+  ElasticFoldParameters ep;
+  BernoulliGlottisParameters bp;
+  bp.p_sub = 1200;
+  bp.dt = 2e-5;
+  ElasticBernoulliGlottis scene(MPI_COMM_SELF, profile, ep, ContactParameters{},
+                                bp, 5e-3, fsai::coupling::CouplingParameters{},
+                                "");
+  std::vector<double> t, gap, Q;
+  double pen = 0;
+  for (int k = 0; k < 7500; ++k) // 0.15 s
+  {
+    const auto s = scene.step();
+    REQUIRE(std::isfinite(s.Q));
+    t.push_back(s.t);
+    gap.push_back(s.gap);
+    Q.push_back(s.Q);
+    pen = std::max(pen, s.penetration);
+  }
+  const auto cs = cycle_stats(t, gap, Q, 0.075);
+  CHECK(cs.cycles >= 8);
+  CHECK(cs.closes_every_cycle);
+  CHECK(cs.f0_hz > 85);
+  CHECK(cs.f0_hz < 155);
+  CHECK(cs.open_quotient < 0.95);
+  // Closed phase: only the leak through the floor gap y_floor
+  CHECK(cs.closed_leakage < 1e-4);
+  // The penalty keeps the penetration of the axis small against the gap
+  CHECK(pen < 0.1 * GlottisGeometry{}.rest_gap);
+  WARN("elastic fold + Bernoulli: f0 "
+       << cs.f0_hz << " Hz, OQ " << cs.open_quotient << ", peak flow "
+       << cs.q_peak << " m3/s, penetration " << pen << " m");
 }

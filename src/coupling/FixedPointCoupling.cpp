@@ -108,7 +108,10 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
         "coupling: not converged at t = {:.6g} s after {} iterations "
         "(relative interface residual {:.3e}, tolerance {:g}, {})",
         t, rep.iterations, rep.residual, _par.tol, _par.accelerator.method);
-    if (_par.on_failure == "error")
+    // A residual as large as the interface variable itself is divergence,
+    // not a stall: never accepted ("warn" is for steps stuck near the
+    // tolerance; the elastic glottis's implicit iteration reached 1e31)
+    if (_par.on_failure == "error" or rep.residual > 1.0)
       throw std::runtime_error(msg);
     fsai::log::warn("{}", msg);
   }

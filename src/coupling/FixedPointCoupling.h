@@ -38,7 +38,8 @@ struct CouplingParameters
   double atol = 0.0;
   int max_iterations = 50; ///< per time step (1: explicit coupling)
   /// What a step that misses `tol` in `max_iterations` does: "error"
-  /// (throws) or "warn" (logs and goes on)
+  /// (throws) or "warn" (logs and goes on, unless its relative residual
+  /// is above 1: divergence always throws)
   std::string on_failure = "error";
 
   void bind(fsai::common::Parameters& p);

@@ -18,29 +18,25 @@ fsai::glottis::moved_surface(const FoldProfile& profile,
   return x;
 }
 
-fsai::glottis::BernoulliState
-fsai::glottis::bernoulli_flow(const FoldProfile& profile,
-                              const RigidMotion& motion, double p_sub,
-                              double p_sup, double rho, double separation_ratio)
+fsai::glottis::SurfacePressure
+fsai::glottis::surface_pressure(const std::vector<std::array<double, 2>>& x,
+                                double Lg, double p_sub, double p_sup,
+                                double rho, double separation_ratio)
 {
-  const auto x = moved_surface(profile, motion);
   const std::size_t n = x.size();
-  const double Lg = profile.geometry().depth;
-  BernoulliState s;
+  SurfacePressure s;
   const auto imin = std::size_t(std::min_element(x.begin(), x.end(),
                                                  [](auto& a, auto& b)
                                                  { return a[1] < b[1]; })
                                 - x.begin());
   s.min_gap = x[imin][1];
   const double dp = std::max(0.0, p_sub - p_sup);
-  // Pressure at each surface point
-  std::vector<double> p(n, p_sup);
+  s.p.assign(n, p_sup);
   std::size_t isep = imin;
-  double p_seg_sep = NAN; // mean pressure of segment [isep, isep + 1]
   if (s.min_gap <= 0)
   {
     for (std::size_t i = 0; i < imin; ++i)
-      p[i] = p_sub;
+      s.p[i] = p_sub;
     s.Q = 0;
   }
   else
@@ -51,21 +47,95 @@ fsai::glottis::bernoulli_flow(const FoldProfile& profile,
     const double ys = separation_ratio * s.min_gap;
     while (isep + 1 < n and x[isep + 1][1] < ys)
       ++isep;
-    double frac = 0; // separation at x[isep] + frac (x[isep+1] − x[isep])
     if (isep + 1 < n and separation_ratio > 1)
-      frac = (ys - x[isep][1]) / (x[isep + 1][1] - x[isep][1]);
+      s.separation_frac = (ys - x[isep][1]) / (x[isep + 1][1] - x[isep][1]);
     s.Q = 2 * Lg * ys * std::sqrt(2 * dp / rho);
     for (std::size_t i = 0; i <= isep; ++i)
     {
       const double v = s.Q / (2 * Lg * x[i][1]);
-      p[i] = p_sub - 0.5 * rho * v * v;
+      s.p[i] = p_sub - 0.5 * rho * v * v;
     }
-    // The segment that holds the separation point: the attached part ends
-    // at p_sup (there the gap is y_s, the jet speed), the rest is p_sup
-    if (isep + 1 < n)
-      p_seg_sep = frac * 0.5 * (p[isep] + p_sup) + (1 - frac) * p_sup;
   }
+  s.separation_index = isep;
   s.separation_x = x[isep][0];
+  return s;
+}
+//-----------------------------------------------------------------------------
+fsai::glottis::SurfacePressure fsai::glottis::viscous_surface_pressure(
+    const std::vector<std::array<double, 2>>& x, double Lg, double p_sub,
+    double p_sup, double rho, double separation_ratio, double mu,
+    double y_floor, double y_sep_min)
+{
+  const std::size_t n = x.size();
+  SurfacePressure s;
+  std::vector<double> y(n);
+  s.min_gap = x[0][1];
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    y[i] = std::max(x[i][1], y_floor);
+    s.min_gap = std::min(s.min_gap, x[i][1]);
+  }
+  const auto imin
+      = std::size_t(std::min_element(y.begin(), y.end()) - y.begin());
+  const double dp = std::max(0.0, p_sub - p_sup);
+  // Separation where y first reaches k_s y_min after the narrowest point
+  const double ys = separation_ratio * std::max(y[imin], y_sep_min);
+  std::size_t isep = imin;
+  while (isep + 1 < n and y[isep + 1] < ys)
+    ++isep;
+  if (isep + 1 < n and separation_ratio > 1)
+    s.separation_frac = (ys - y[isep]) / (y[isep + 1] - y[isep]);
+  // C at each point up to the separation, and at the separation point:
+  // ∫ dx/(2y)³ = Δx (y0 + y1) / (16 y0² y1²) for y linear on a segment
+  auto segment = [&](double dx, double y0, double y1) {
+    return 12 * mu / Lg * std::abs(dx) * (y0 + y1) / (16 * y0 * y0 * y1 * y1);
+  };
+  std::vector<double> C(isep + 1, 0.0);
+  for (std::size_t i = 1; i <= isep; ++i)
+    C[i] = C[i - 1] + segment(x[i][0] - x[i - 1][0], y[i - 1], y[i]);
+  double Cs = C[isep];
+  if (isep + 1 < n)
+    Cs += segment(s.separation_frac * (x[isep + 1][0] - x[isep][0]), y[isep],
+                  ys);
+  // ½ρ Q²/(2 L_g y_s)² + C_s Q = Δp, the positive root in a stable form
+  const double a = 0.5 * rho / std::pow(2 * Lg * ys, 2);
+  s.Q = 2 * dp / (Cs + std::sqrt(Cs * Cs + 4 * a * dp));
+  s.p.assign(n, p_sup);
+  for (std::size_t i = 0; i <= isep; ++i)
+  {
+    const double v = s.Q / (2 * Lg * y[i]);
+    s.p[i] = p_sub - 0.5 * rho * v * v - s.Q * C[i];
+  }
+  s.separation_index = isep;
+  s.separation_x = x[isep][0]
+                   + s.separation_frac
+                         * (isep + 1 < n ? x[isep + 1][0] - x[isep][0] : 0.0);
+  return s;
+}
+//-----------------------------------------------------------------------------
+fsai::glottis::BernoulliState
+fsai::glottis::bernoulli_flow(const FoldProfile& profile,
+                              const RigidMotion& motion, double p_sub,
+                              double p_sup, double rho, double separation_ratio)
+{
+  const auto x = moved_surface(profile, motion);
+  const std::size_t n = x.size();
+  const double Lg = profile.geometry().depth;
+  const auto sp = surface_pressure(x, Lg, p_sub, p_sup, rho, separation_ratio);
+  const auto& p = sp.p;
+  const std::size_t isep = sp.separation_index;
+  BernoulliState s;
+  s.Q = sp.Q;
+  s.min_gap = sp.min_gap;
+  s.separation_x = sp.separation_x;
+  // The segment that holds the separation point: the attached part ends at
+  // p_sup (there the gap is y_s, the jet speed), the rest is p_sup
+  double p_seg_sep = NAN; // mean pressure of segment [isep, isep + 1]
+  if (s.min_gap > 0 and isep + 1 < n)
+  {
+    const double frac = sp.separation_frac;
+    p_seg_sep = frac * 0.5 * (p[isep] + p_sup) + (1 - frac) * p_sup;
+  }
 
   // Force of the pressure on each segment (into the fold: the fold lies to
   // the left of the point order), and its virtual work on (h, φ)

@@ -20,8 +20,13 @@ struct BernoulliGlottisParameters
   double p_sup = 0;              ///< supraglottal pressure [Pa]
   double rho = 1.2;              ///< air density [kg/m³]
   double separation_ratio = 1.2; ///< k_s
-  double dt = 1e-5;              ///< time step [s]
-  double tol = 1e-10;            ///< fixed point: |Δq| relative to |q| + 1e-6
+  /// Elastic fold only (viscous_surface_pressure): air viscosity μ [Pa s]
+  /// and the smallest gap the flow sees [m]
+  double viscosity = 1.8e-5;
+  double y_floor = 0.2e-6;
+  double y_sep_min = 20e-6; ///< separation at ≥ k_s times this gap [m]
+  double dt = 1e-5;         ///< time step [s]
+  double tol = 1e-10;       ///< fixed point: |Δq| relative to |q| + 1e-6
   int max_iterations = 50;
 };
 

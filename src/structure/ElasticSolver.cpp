@@ -124,6 +124,9 @@ fsai::structure::ElasticSolver::ElasticSolver(
   };
   _dynamic = constant(1.0);
   _load = constant(1.0);
+  _k_c = constant(0.0);
+  _b_c = constant(0.0);
+  _y_c = constant(0.0);
   std::vector<double> g0(tdim, 0.0);
   _g = std::make_shared<fem::Constant<double>>(std::span<const double>(g0));
   std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
@@ -135,7 +138,10 @@ fsai::structure::ElasticSolver::ElasticSolver(
          {"dynamic", _dynamic},
          {"nonlinear", constant(params.model == "svk" ? 1.0 : 0.0)},
          {"load", _load},
-         {"g", _g}};
+         {"g", _g},
+         {"k_c", _k_c},
+         {"b_c", _b_c},
+         {"y_c", _y_c}};
   std::map<std::string, std::shared_ptr<const fem::Function<double>>> coeffs
       = {{"u", _u},
          {"u_n", _u_n},
@@ -170,6 +176,8 @@ fsai::structure::ElasticSolver::ElasticSolver(
       structure_forms::k(tdim, deg), {_V, _V}, coeffs, c, {}));
   _M = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       structure_forms::m(tdim, deg), {_V, _V}, coeffs, c, {}));
+  _F_c = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      structure_forms::contact_force(tdim, deg), {}, coeffs, c, sd, mesh));
   _Jmat = la::petsc::Matrix(fem::petsc::create_matrix(*_J), false);
 
   _solver.set_options_prefix("solid_");
@@ -198,6 +206,27 @@ void fsai::structure::ElasticSolver::set_material(
   _J_current = false;
 }
 //-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::set_contact(double k, double b, double y_c)
+{
+  fsai::require(k >= 0, "solid: contact stiffness", ">= 0", k);
+  fsai::require(b >= 0, "solid: contact damping", ">= 0", b);
+  _k_c->value[0] = k;
+  _b_c->value[0] = b;
+  _y_c->value[0] = y_c;
+  _J_current = false;
+}
+//-----------------------------------------------------------------------------
+double fsai::structure::ElasticSolver::contact_force() const
+{
+  // The form holds the Newmark velocity of the unknown u from u_n, v_n, a_n:
+  // after a step these are the step's start, so the damping part is the
+  // step's own
+  const double local = fem::assemble_scalar(*_F_c);
+  double global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _V->mesh()->comm());
+  return global;
+}
+//-----------------------------------------------------------------------------
 void fsai::structure::ElasticSolver::set_body_acceleration(
     std::array<double, 3> g)
 {
@@ -211,7 +240,9 @@ int fsai::structure::ElasticSolver::newton(const std::string& what)
   la::Vector<double> du(_V->dofmap()->index_map, _V->dofmap()->index_map_bs());
   la::petsc::Vector _b(la::petsc::create_vector_wrap(b), false);
   la::petsc::Vector _du(la::petsc::create_vector_wrap(du), false);
-  const bool linear = _p.model == "linear";
+  // Linear elasticity without contact: one Newton iteration is exact and
+  // the Jacobian constant
+  const bool linear = _p.model == "linear" and _k_c->value[0] == 0.0;
   double r0 = -1.0;
   double dnorm_prev = -1.0;
   // Modified Newton in dynamic steps only: there the mass term dominates

@@ -91,6 +91,14 @@ public:
   void set_material(std::span<const std::int32_t> cells, const Material& m);
   /// Body acceleration g [m/s²] (gravity), scaled by the load factor
   void set_body_acceleration(std::array<double, 3> g);
+  /// Penalty contact of the loaded facets with the plane y = y_c
+  /// (forms/structure.py): pressure k δ max(0, 1 + b δ̇) where the surface
+  /// has crossed it by δ; k = 0 removes it. Part of the residual, so each
+  /// step is solved with it (Newton), also for the linear model
+  void set_contact(double k, double b, double y_c);
+  /// Contact force along +y on the loaded facets at the current state [N]
+  /// (per unit depth in 2D; collective)
+  double contact_force() const;
   /// Traction on the loaded facets [Pa] (P1/P2 vector field)
   dolfinx::fem::Function<double>& traction() { return *_traction; }
 
@@ -148,11 +156,12 @@ private:
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;
   std::shared_ptr<dolfinx::fem::Function<double>> _u, _u_n, _v_n, _a_n, _v, _a,
       _traction, _lambda, _mu, _rho;
-  std::shared_ptr<dolfinx::fem::Constant<double>> _dynamic, _load, _g;
+  std::shared_ptr<dolfinx::fem::Constant<double>> _dynamic, _load, _g, _k_c,
+      _b_c, _y_c;
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _loaded_tags;
-  std::shared_ptr<dolfinx::fem::Form<double>> _R, _J, _K, _M;
+  std::shared_ptr<dolfinx::fem::Form<double>> _R, _J, _K, _M, _F_c;
   dolfinx::la::petsc::Matrix _Jmat;
   bool _J_current = false; ///< J assembled and factorised for the current
                            ///< material, Δt and load mode

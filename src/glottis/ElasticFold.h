@@ -1,0 +1,131 @@
+// Copyright (C) 2026 fsai developers
+//
+// The elastic vocal fold of the glottis scene (issue 7, `--fold elastic`;
+// shared/DESIGN.md "Structure"): the region between the fold profile's
+// surface and its lateral attachment y = H (mesh::glottis_channel_and_fold,
+// the same nodes on the fold curve as the flow mesh) as a plane-strain
+// linear elastic body (E = 8 kPa, ν = 0.4 by default; ElasticSolver, Newmark,
+// stiffness-proportional Rayleigh damping), fixed at the attachment and
+// loaded by a pressure on its surface. The two folds meet on the symmetry
+// axis y = 0: a penalty contact with that plane (forms/structure.py,
+// implicit in each Newton solve) takes the place of the rigid profile's
+// Hertz force, since the body's own elasticity now gives the deformation
+// near the contact.
+//
+// The surface is handled as an ordered polyline of its displacement dofs
+// (P2: vertices and facet midpoints), inferior → superior like
+// FoldProfile::points(): every rank holds the whole polyline (a few hundred
+// points), gathered each evaluation, so a 1D flow model sees the same
+// surface on any number of ranks.
+#pragma once
+#include "FoldProfile.h"
+#include "HertzContact.h"
+#include <memory>
+#include <mesh/MeshData.h>
+#include <mpi.h>
+#include <span>
+#include <structure/ElasticSolver.h>
+#include <vector>
+
+namespace fsai::common
+{
+class Parameters;
+}
+
+namespace fsai::glottis
+{
+/// [elastic] section
+struct ElasticFoldParameters
+{
+  int degree = 2;
+  double h_surface = 0.2e-3; ///< mesh size on the fold surface [m]
+  double h_far = 1e-3;       ///< mesh size away from it [m]
+  structure::Material material{8e3, 0.4, 1000.0};
+  /// Rayleigh damping D = ε1 M + ε2 K with the damping ratio ζ at both
+  /// f_zeta_low and f_zeta_high (ε1 = 2ζ ω_l ω_h/(ω_l + ω_h), ε2 = 2ζ/(ω_l
+  /// + ω_h)): about ζ between them, more above (the noise of impacts).
+  /// f_zeta_low = 0: stiffness-proportional only, ζ at f_zeta_high
+  double zeta = 0.01;
+  double f_zeta_low = 0;    ///< [Hz]
+  double f_zeta_high = 100; ///< [Hz]
+  /// Contact penalty k_c = contact_factor · E / h_surface [Pa/m]: the
+  /// penetration under a contact pressure p is p h_surface / (factor E),
+  /// i.e. a fraction 1/factor of what the first cell's own stiffness
+  /// allows; larger factors stiffen the Newton solves
+  double contact_factor = 10;
+  /// Coupling of the fold with the Bernoulli flow: "explicit" (the
+  /// pressure of the Newmark-predicted surface, one solve per step) or
+  /// "implicit" (iterated to the [coupling] tolerance). The quasi-steady
+  /// load has no added mass, so the explicit scheme is stable; it gave the
+  /// implicit scheme's cycle (f0 equal, peak flow −0.35 %) at 0.4 of its
+  /// cost, while the implicit iteration stalled at 1e−5–1e−3 in about 35
+  /// steps per 0.25 s near contact changes and diverged in a few
+  std::string coupling = "explicit";
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+};
+
+class ElasticFold
+{
+public:
+  /// @param[in] dt Time step [s]; contact damping b_c = contact.b_H
+  ElasticFold(MPI_Comm comm, const FoldProfile& profile,
+              const ElasticFoldParameters& p, const ContactParameters& contact,
+              double dt);
+
+  /// Surface points of all ranks, ordered inferior → superior
+  std::size_t surface_size() const { return _X.size(); }
+  /// Reference positions of the ordered surface points
+  const std::vector<std::array<double, 2>>& surface_reference() const
+  {
+    return _X;
+  }
+  /// This rank's owned surface displacement (x, y per owned surface point)
+  std::vector<double> surface_displacement() const;
+  /// Its Newmark predictor u + Δt v + ½Δt² a (the next step's first guess)
+  std::vector<double> surface_prediction() const;
+  /// The ordered surface of all ranks moved by this rank's owned
+  /// displacements `owned` (collective)
+  std::vector<std::array<double, 2>>
+  moved_surface(std::span<const double> owned) const;
+  /// Pressure p at the ordered surface points [Pa]: traction −p n
+  void set_pressure(std::span<const double> p);
+
+  void save_state() { _solver->save_state(); }
+  void restore_state() { _solver->restore_state(); }
+  /// One Newmark step under the set pressure (and contact); Newton its
+  int step() { return _solver->step(); }
+
+  /// Contact force along +y of the last step, times the depth L_g [N]
+  double contact_force() const;
+  /// Translation h (towards the axis) of the medial surface's centre and
+  /// its tilt φ (counter-clockwise, > 0 divergent) of a moved surface
+  std::array<double, 2>
+  medial_motion(const std::vector<std::array<double, 2>>& x) const;
+  /// Force of the pressure p on the moved surface x, times L_g [N]
+  std::array<double, 2>
+  pressure_force(const std::vector<std::array<double, 2>>& x,
+                 std::span<const double> p) const;
+
+  structure::ElasticSolver& solver() { return *_solver; }
+  const FoldProfile& profile() const { return _profile; }
+  const mesh::MeshData& mesh() const { return _mesh; }
+  std::int64_t dofs() const;
+
+private:
+  MPI_Comm _comm;
+  const FoldProfile& _profile;
+  mesh::MeshData _mesh;
+  std::unique_ptr<structure::ElasticSolver> _solver;
+  std::vector<std::int32_t> _owned; ///< owned surface dof blocks
+  /// Position of each owned point in the gathered (rank-ordered) list, and
+  /// the gathered index of each ordered point
+  std::vector<std::size_t> _order;
+  std::vector<int> _rank_offset; // gathered index of rank r's first point
+  std::vector<std::array<double, 2>> _X; // ordered reference points
+  std::vector<std::array<double, 2>> _n; // their outward normals
+  /// Ordered index of each of this rank's owned points
+  std::vector<std::size_t> _my_ordered;
+  std::size_t _i_medial = 0, _i_inf = 0, _i_sup = 0;
+};
+} // namespace fsai::glottis
