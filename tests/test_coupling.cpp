@@ -61,6 +61,14 @@ TEST_CASE("Coupling: explicit iteration diverges on the added-mass model, "
   {
     fsai::coupling::FixedPointCoupling loop(MPI_COMM_WORLD, params(method, 60));
     std::vector<double> x(m.b.size(), 0.0);
+    if (method == "constant")
+    {
+      // Explicit: the residual grows until it exceeds the interface
+      // variable itself, which is an error even under on_failure = "warn"
+      CHECK_THROWS_WITH(loop.step(0.0, x, m.map(1.0)),
+                        Catch::Contains("not converged"));
+      continue;
+    }
     rep[method] = loop.step(0.0, x, m.map(1.0));
     double err = 0;
     for (std::size_t i = 0; i < x.size(); ++i)
@@ -71,13 +79,8 @@ TEST_CASE("Coupling: explicit iteration diverges on the added-mass model, "
                     method, rep[method].iterations,
                     rep[method].first_residual_abs, rep[method].residual_abs,
                     rep[method].residual, err);
-    if (method != "constant")
-      CHECK(err < 1e-6);
+    CHECK(err < 1e-6);
   }
-  // Explicit: the residual grows by orders of magnitude
-  CHECK_FALSE(rep["constant"].converged);
-  CHECK(rep["constant"].residual_abs
-        > 1e3 * rep["constant"].first_residual_abs);
   CHECK(rep["aitken"].converged);
   CHECK(rep["iqn-ils"].converged);
   CHECK(rep["iqn-ils"].iterations < rep["aitken"].iterations);

@@ -240,6 +240,24 @@ TEST_CASE("Limit-cycle measures of a known waveform", "[glottis]")
   CHECK(cs.closes_every_cycle);
   CHECK(cs.q_peak == Approx(a + c).epsilon(1e-6));
   CHECK(cs.closed_leakage == 0);
+  CHECK(cs.period_cv < 1e-4);
+  CHECK(cs.q_peak_cv < 1e-6);
+  CHECK(cs.q_peak_mean == Approx(a + c).epsilon(1e-6));
+  // Alternating cycles (period 2: amplitudes a and a/2 with the same mean
+  // crossing): the per-cycle peaks a + c and a/2 + c, CV (a/2)/(3a/2 + 2c)
+  for (std::size_t k = 0; k < t.size(); ++k)
+  {
+    const double s = std::sin(2 * M_PI * f * t[k]);
+    const bool odd = int(std::floor(f * t[k])) % 2 == 1;
+    gap[k] = (odd ? 0.5 * a : a) * s + c;
+    Q[k] = std::max(0.0, gap[k]);
+  }
+  const auto alt = cycle_stats(t, gap, Q, 0.0);
+  CHECK(alt.f0_hz == Approx(f).epsilon(1e-3));
+  const double p1 = a + c, p2 = 0.5 * a + c;
+  CHECK(alt.q_peak_cv
+        == Approx(0.5 * (p1 - p2) / (0.5 * (p1 + p2))).epsilon(0.05));
+  CHECK(alt.period_cv < 1e-3);
 }
 
 TEST_CASE("Reduced model: stable below onset, self-sustained closing "
@@ -481,5 +499,7 @@ TEST_CASE("Elastic fold with the Bernoulli flow: self-sustained oscillation "
   CHECK(pen < 0.1 * GlottisGeometry{}.rest_gap);
   WARN("elastic fold + Bernoulli: f0 "
        << cs.f0_hz << " Hz, OQ " << cs.open_quotient << ", peak flow "
-       << cs.q_peak << " m3/s, penetration " << pen << " m");
+       << cs.q_peak << " m3/s (cycle mean " << cs.q_peak_mean << ", CV "
+       << cs.q_peak_cv << "), period CV " << cs.period_cv << ", penetration "
+       << pen << " m");
 }

@@ -33,14 +33,12 @@ fsai::glottis::ElasticBernoulliGlottis::ElasticBernoulliGlottis(
 void fsai::glottis::ElasticBernoulliGlottis::evaluate(
     double t, std::span<const double> owned, Sample& s)
 {
-  const double r = _ramp > 0 and t < _ramp
-                       ? 0.5 * (1 - std::cos(M_PI * t / _ramp))
-                       : 1.0;
+  const double r
+      = _ramp > 0 and t < _ramp ? 0.5 * (1 - std::cos(M_PI * t / _ramp)) : 1.0;
   const auto x = _fold.moved_surface(owned);
   const auto sp = viscous_surface_pressure(
-      x, _fold.profile().geometry().depth, r * _par.p_sub, _par.p_sup,
-      _par.rho, _par.separation_ratio, _par.viscosity, _par.y_floor,
-      _par.y_sep_min);
+      x, _fold.profile().geometry().depth, r * _par.p_sub, _par.p_sup, _par.rho,
+      _par.separation_ratio, _par.viscosity, _par.y_floor, _par.y_sep_min);
   _fold.set_pressure(sp.p);
   s.gap = sp.min_gap;
   s.Q = sp.Q;
@@ -86,8 +84,8 @@ fsai::glottis::Sample fsai::glottis::ElasticBernoulliGlottis::step()
   if (!std::isfinite(out.gap) or !std::isfinite(out.Q)
       or !std::isfinite(out.lift))
   {
-    throw std::runtime_error(fmt::format(
-        "elastic glottis: non-finite state at t = {:.6g} s", _t));
+    throw std::runtime_error(
+        fmt::format("elastic glottis: non-finite state at t = {:.6g} s", _t));
   }
   return out;
 }

@@ -15,8 +15,8 @@
 // guess: the Newmark predictor u + Δt v + ½Δt² a. elastic.coupling =
 // "explicit" (default) applies H once; "implicit" iterates it to its fixed
 // point with FixedPointCoupling (IQN-ILS by default; see ElasticFold.h for
-// why explicit is the default). p_sub ramps up smoothly over `ramp` (a step in p_sub would ring
-// the fold's higher modes).
+// why explicit is the default). p_sub ramps up smoothly over `ramp` (a step in
+// p_sub would ring the fold's higher modes).
 #pragma once
 #include "BernoulliGlottis.h"
 #include "ElasticFold.h"

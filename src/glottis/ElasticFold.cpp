@@ -1,9 +1,9 @@
 // Copyright (C) 2026 fsai developers
 #include "ElasticFold.h"
+#include <cmath>
 #include <common/Parameters.h>
 #include <common/errors.h>
 #include <common/mpi_gather.h>
-#include <cmath>
 #include <dolfinx/fem/utils.h>
 #include <limits>
 #include <mesh/glottis_channel.h>
@@ -78,8 +78,7 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   // ordering) took 33 ms per factorisation at 3.4k unknowns, AMD 3.3 ms
   // (nested dissection 6.3 ms). The options database still decides
   PetscBool set = PETSC_FALSE;
-  PetscOptionsHasName(nullptr, "solid_", "-pc_factor_mat_ordering_type",
-                      &set);
+  PetscOptionsHasName(nullptr, "solid_", "-pc_factor_mat_ordering_type", &set);
   if (!set)
     PetscOptionsSetValue(nullptr, "-solid_pc_factor_mat_ordering_type", "amd");
   const auto fold = _mesh.facet_tags->find(_mesh.facet_tag("fold"));
@@ -97,8 +96,8 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   const auto& P = profile.points();
   std::vector<double> arc(P.size(), 0.0);
   for (std::size_t i = 1; i < P.size(); ++i)
-    arc[i] = arc[i - 1]
-             + std::hypot(P[i][0] - P[i - 1][0], P[i][1] - P[i - 1][1]);
+    arc[i]
+        = arc[i - 1] + std::hypot(P[i][0] - P[i - 1][0], P[i][1] - P[i - 1][1]);
   std::vector<double> loc; // (s, X, Y) per owned point
   for (auto d : dofs)
   {
@@ -132,8 +131,8 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
     _rank_offset[r + 1] = _rank_offset[r] + int(counts[r]);
   _order.resize(n);
   std::iota(_order.begin(), _order.end(), 0);
-  std::stable_sort(_order.begin(), _order.end(), [&](auto a, auto b)
-                   { return all[3 * a] < all[3 * b]; });
+  std::stable_sort(_order.begin(), _order.end(),
+                   [&](auto a, auto b) { return all[3 * a] < all[3 * b]; });
   std::vector<std::size_t> ordered_of(n);
   _X.resize(n);
   for (std::size_t k = 0; k < n; ++k)
@@ -248,10 +247,10 @@ std::array<double, 2> fsai::glottis::ElasticFold::medial_motion(
     const std::vector<std::array<double, 2>>& x) const
 {
   const double h = _X[_i_medial][1] - x[_i_medial][1];
-  const double phi = std::atan2(x[_i_sup][1] - x[_i_inf][1],
-                                x[_i_sup][0] - x[_i_inf][0])
-                     - std::atan2(_X[_i_sup][1] - _X[_i_inf][1],
-                                  _X[_i_sup][0] - _X[_i_inf][0]);
+  const double phi
+      = std::atan2(x[_i_sup][1] - x[_i_inf][1], x[_i_sup][0] - x[_i_inf][0])
+        - std::atan2(_X[_i_sup][1] - _X[_i_inf][1],
+                     _X[_i_sup][0] - _X[_i_inf][0]);
   return {h, phi};
 }
 //-----------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "waveform.h"
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 fsai::glottis::CycleStats fsai::glottis::cycle_stats(
@@ -35,9 +36,11 @@ fsai::glottis::CycleStats fsai::glottis::cycle_stats(
   // Over complete cycles only
   double open = 0, total = 0;
   bool every = true;
+  std::vector<double> periods, peaks;
   for (std::size_t c = 0; c + 1 < up_i.size(); ++c)
   {
     bool closed = false;
+    double peak = 0;
     for (std::size_t i = up_i[c]; i < up_i[c + 1]; ++i)
     {
       const double dt = t[i] - t[i - 1];
@@ -46,10 +49,26 @@ fsai::glottis::CycleStats fsai::glottis::cycle_stats(
         open += dt;
       else
         closed = true;
-      s.q_peak = std::max(s.q_peak, Q[i]);
+      peak = std::max(peak, Q[i]);
     }
+    s.q_peak = std::max(s.q_peak, peak);
     every = every and closed;
+    periods.push_back(up[c + 1] - up[c]);
+    peaks.push_back(peak);
   }
+  auto mean_cv = [](const std::vector<double>& v)
+  {
+    double m = 0, q = 0;
+    for (double x : v)
+      m += x / v.size();
+    for (double x : v)
+      q += (x - m) * (x - m) / v.size();
+    return std::array<double, 2>{m, m > 0 ? std::sqrt(q) / m : 0.0};
+  };
+  s.period_cv = mean_cv(periods)[1];
+  const auto pk = mean_cv(peaks);
+  s.q_peak_mean = pk[0];
+  s.q_peak_cv = pk[1];
   s.open_quotient = total > 0 ? open / total : 1;
   s.closes_every_cycle = every;
   double leak = 0;

@@ -5,7 +5,10 @@
 // glottis closed (g ≤ g_closed: the closure threshold g_min of the scene,
 // where the FE flow boundary stops and the porous region takes over), the
 // open quotient (share of time with g > g_closed), the peak flow and the
-// closed-phase leakage (largest |Q| while closed, relative to the peak).
+// closed-phase leakage (largest |Q| while closed, relative to the peak);
+// and how regular the cycles are: the coefficients of variation (standard
+// deviation over mean) of the cycle periods and of the per-cycle peak
+// flows (jitter- and shimmer-like; 0 for a limit cycle).
 #pragma once
 #include <vector>
 
@@ -20,6 +23,9 @@ struct CycleStats
   double closed_leakage = 0; ///< max |Q| with g ≤ g_closed, over q_peak
   bool closes_every_cycle = false;
   double gap_amplitude = 0; ///< (max g − min g)/2 [m]
+  double period_cv = 0;     ///< CV of the cycle periods
+  double q_peak_cv = 0;     ///< CV of the per-cycle peak flows
+  double q_peak_mean = 0;   ///< mean of the per-cycle peak flows [m³/s]
 };
 
 /// Statistics of the samples with t ≥ t_from (uniform or not)
