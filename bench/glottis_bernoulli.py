@@ -18,6 +18,8 @@ import os
 import subprocess
 import sys
 
+from benchlib import print_markdown_table, write_rows
+
 here = os.path.dirname(os.path.abspath(__file__))
 build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "build")
 exe = os.path.join(build, "demos", "fsai_glottis")
@@ -47,18 +49,16 @@ for dt, ps in [(2e-5, p) for p in pressures] + [(4e-5, 1000), (1e-5, 1000)]:
                  "gap_amplitude_m": s["gap_amplitude_m"],
                  "max_penetration_m": s["max_penetration_m"],
                  "wall_per_sim_s": s["wall_per_sim_s"]})
-with open(os.path.join(out, "glottis_bernoulli.csv"), "w", newline="") as f:
-    w = csv.DictWriter(f, fieldnames=list(rows[0]))
-    w.writeheader()
-    w.writerows(rows)
-print("| p_sub [Pa] | dt [s] | f0 [Hz] | OQ | Q_peak [l/s] | closes | gap amp [mm] | "
-      "max δ [mm] | wall s / sim s |")
-print("|---|---|---|---|---|---|---|---|---|")
-for r in rows:
-    print(f"| {r['p_sub_Pa']} | {r['dt_s']:g} | {r['f0_hz']:.2f} | {r['open_quotient']:.3f} | "
-          f"{1e3 * r['q_peak_m3s']:.3f} | {'yes' if r['closes_every_cycle'] else 'no'} | "
-          f"{1e3 * r['gap_amplitude_m']:.3f} | {1e3 * r['max_penetration_m']:.3f} | "
-          f"{r['wall_per_sim_s']:.2f} |")
+write_rows(os.path.join(out, "glottis_bernoulli.csv"), rows)
+print_markdown_table([
+    ("p_sub [Pa]", lambda r: f"{r['p_sub_Pa']}"), ("dt [s]", lambda r: f"{r['dt_s']:g}"),
+    ("f0 [Hz]", lambda r: f"{r['f0_hz']:.2f}"),
+    ("OQ", lambda r: f"{r['open_quotient']:.3f}"),
+    ("Q_peak [l/s]", lambda r: f"{1e3 * r['q_peak_m3s']:.3f}"),
+    ("closes", lambda r: "yes" if r["closes_every_cycle"] else "no"),
+    ("gap amp [mm]", lambda r: f"{1e3 * r['gap_amplitude_m']:.3f}"),
+    ("max δ [mm]", lambda r: f"{1e3 * r['max_penetration_m']:.3f}"),
+    ("wall s / sim s", lambda r: f"{r['wall_per_sim_s']:.2f}")], rows)
 try:
     import matplotlib
     matplotlib.use("Agg")

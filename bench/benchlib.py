@@ -1,0 +1,18 @@
+"""Helpers shared by the bench scripts."""
+import csv
+
+
+def write_rows(path, rows):
+    """Write a list of dicts (same keys, in order) as a CSV file."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+def print_markdown_table(columns, rows):
+    """Print rows as a Markdown table; columns: (header, row -> text)."""
+    print("| " + " | ".join(h for h, _ in columns) + " |")
+    print("|" + "---|" * len(columns))
+    for r in rows:
+        print("| " + " | ".join(fmt(r) for _, fmt in columns) + " |")
