@@ -203,10 +203,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
     // the FE glottis flow (stop 26), which refactorises every step. Its
     // threshold pivoting does without: the glottis series agreed to 1e−12.
     // The options database (-fluid_mat_mumps_icntl_8) still decides.
-    PetscBool set = PETSC_FALSE;
-    PetscOptionsHasName(nullptr, "fluid_", "-mat_mumps_icntl_8", &set);
-    if (!set)
-      PetscOptionsSetValue(nullptr, "-fluid_mat_mumps_icntl_8", "0");
+    common::set_option_default("fluid_mat_mumps_icntl_8", "0");
   }
   else
   {

@@ -2,13 +2,13 @@
 #include "ElasticFold.h"
 #include <cmath>
 #include <common/Parameters.h>
+#include <common/Runtime.h>
 #include <common/errors.h>
 #include <common/mpi_gather.h>
 #include <dolfinx/fem/utils.h>
 #include <limits>
 #include <mesh/glottis_channel.h>
 #include <numeric>
-#include <petscsys.h>
 
 //-----------------------------------------------------------------------------
 void fsai::glottis::ElasticFoldParameters::bind(fsai::common::Parameters& p)
@@ -77,10 +77,7 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   // PETSc's LU of this small 2D system (configure_direct_solver: RCM
   // ordering) took 33 ms per factorisation at 3.4k unknowns, AMD 3.3 ms
   // (nested dissection 6.3 ms). The options database still decides
-  PetscBool set = PETSC_FALSE;
-  PetscOptionsHasName(nullptr, "solid_", "-pc_factor_mat_ordering_type", &set);
-  if (!set)
-    PetscOptionsSetValue(nullptr, "-solid_pc_factor_mat_ordering_type", "amd");
+  common::set_option_default("solid_pc_factor_mat_ordering_type", "amd");
   const auto fold = _mesh.facet_tags->find(_mesh.facet_tag("fold"));
   _solver = std::make_unique<structure::ElasticSolver>(
       _mesh.mesh, _mesh.facet_tags->find(_mesh.facet_tag("attachment")), fold,
