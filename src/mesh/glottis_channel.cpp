@@ -8,10 +8,13 @@
 std::vector<int>
 fsai::mesh::add_fold_points(const glottis::FoldProfile& profile)
 {
+  const auto& g = profile.geometry();
   const auto& pts = profile.points();
-  std::vector<int> tags;
+  namespace geo = gmsh::model::geo;
+  std::vector<int> tags = {geo::addPoint(g.fold_length, g.half_height, 0)};
   for (int i = int(pts.size()) - 3; i >= 2; i -= 2)
-    tags.push_back(gmsh::model::geo::addPoint(pts[i][0], pts[i][1], 0));
+    tags.push_back(geo::addPoint(pts[i][0], pts[i][1], 0));
+  tags.push_back(geo::addPoint(0, g.half_height, 0));
   return tags;
 }
 
@@ -33,14 +36,10 @@ void build_channel(const fsai::glottis::FoldProfile& profile, double h_far,
   const int p_in0 = geo::addPoint(x0, 0, 0);
   const int p_out0 = geo::addPoint(x1, 0, 0);
   const int p_out1 = geo::addPoint(x1, H, 0);
-  const int p_sup = geo::addPoint(g.fold_length, H, 0);
   // The fold surface, superior attachment to inferior (the domain
   // boundary runs counter-clockwise)
-  std::vector<int> spline = {p_sup};
-  for (int p : add_fold_points(profile))
-    spline.push_back(p);
-  const int p_inf = geo::addPoint(0, H, 0);
-  spline.push_back(p_inf);
+  const std::vector<int> spline = add_fold_points(profile);
+  const int p_sup = spline.front(), p_inf = spline.back();
   const int p_in1 = geo::addPoint(x0, H, 0);
   const int axis = geo::addLine(p_in0, p_out0);
   const int outlet = geo::addLine(p_out0, p_out1);

@@ -29,10 +29,11 @@ MeshData glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
                          double grading = 3e-3, double h_jet = 0,
                          double jet_height = 0);
 
-/// Points (in the current gmsh geo model) of the fold curve between its
-/// attachments, superior to inferior, through every 2nd profile point: the
-/// one definition of the fold curve of every mesh of the glottis scenes
-/// (flow, fold, acoustic domain), which must have the same nodes on it
+/// Points (in the current gmsh geo model) of the fold curve, superior to
+/// inferior: its superior attachment (T, H) first, every 2nd profile point,
+/// its inferior attachment (0, H) last. The one definition of the fold
+/// curve of every mesh of the glottis scenes (flow, fold, acoustic
+/// domain), which must have the same nodes on it
 std::vector<int> add_fold_points(const glottis::FoldProfile& profile);
 
 /// The same channel (no fine band, no jet box) and the fold itself as one

@@ -160,12 +160,8 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
         }
         tract_pts.push_back(geo::addPoint(x1, r(g.outlet_length), 0));
         const int p_out1 = geo::addPoint(x1, H, 0);
-        const int p_sup = geo::addPoint(T, H, 0);
-        std::vector<int> spline = {p_sup};
-        for (int p : add_fold_points(profile))
-          spline.push_back(p);
-        const int p_inf = geo::addPoint(0, H, 0);
-        spline.push_back(p_inf);
+        const std::vector<int> spline = add_fold_points(profile);
+        const int p_sup = spline.front(), p_inf = spline.back();
         const int p_in1 = geo::addPoint(x0, H, 0);
 
         const int axis = geo::addLine(p_in0, p_ax1);
