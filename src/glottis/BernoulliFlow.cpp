@@ -2,6 +2,29 @@
 #include "BernoulliFlow.h"
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
+
+namespace
+{
+/// Separation where the half-gap y(i) first reaches y_s downstream of the
+/// narrowest point imin, located between surface points (a continuous
+/// function of the motion: a jump from point to point would stall the
+/// implicit coupling): the last attached point i and the fraction of the
+/// segment [i, i + 1] before the separation (0 without interpolation)
+template <typename Height>
+std::pair<std::size_t, double> separation(Height y, std::size_t n,
+                                          std::size_t imin, double ys,
+                                          bool interpolate)
+{
+  std::size_t i = imin;
+  while (i + 1 < n and y(i + 1) < ys)
+    ++i;
+  const double frac
+      = (i + 1 < n and interpolate) ? (ys - y(i)) / (y(i + 1) - y(i)) : 0.0;
+  return {i, frac};
+}
+} // namespace
 
 std::vector<std::array<double, 2>>
 fsai::glottis::moved_surface(const FoldProfile& profile,
@@ -41,14 +64,11 @@ fsai::glottis::surface_pressure(const std::vector<std::array<double, 2>>& x,
   }
   else
   {
-    // Separation where y first reaches k_s y_min after the narrowest point,
-    // located between surface points (a continuous function of the motion:
-    // a jump from point to point would stall the implicit coupling)
+    // Separation where y first reaches k_s y_min after the narrowest point
     const double ys = separation_ratio * s.min_gap;
-    while (isep + 1 < n and x[isep + 1][1] < ys)
-      ++isep;
-    if (isep + 1 < n and separation_ratio > 1)
-      s.separation_frac = (ys - x[isep][1]) / (x[isep + 1][1] - x[isep][1]);
+    std::tie(isep, s.separation_frac)
+        = separation([&](std::size_t i) { return x[i][1]; }, n, imin, ys,
+                     separation_ratio > 1);
     s.Q = 2 * Lg * ys * std::sqrt(2 * dp / rho);
     for (std::size_t i = 0; i <= isep; ++i)
     {
@@ -80,11 +100,9 @@ fsai::glottis::SurfacePressure fsai::glottis::viscous_surface_pressure(
   const double dp = std::max(0.0, p_sub - p_sup);
   // Separation where y first reaches k_s y_min after the narrowest point
   const double ys = separation_ratio * std::max(y[imin], y_sep_min);
-  std::size_t isep = imin;
-  while (isep + 1 < n and y[isep + 1] < ys)
-    ++isep;
-  if (isep + 1 < n and separation_ratio > 1)
-    s.separation_frac = (ys - y[isep]) / (y[isep + 1] - y[isep]);
+  std::size_t isep;
+  std::tie(isep, s.separation_frac) = separation(
+      [&](std::size_t i) { return y[i]; }, n, imin, ys, separation_ratio > 1);
   // C at each point up to the separation, and at the separation point:
   // ∫ dx/(2y)³ = Δx (y0 + y1) / (16 y0² y1²) for y linear on a segment
   auto segment = [&](double dx, double y0, double y1) {

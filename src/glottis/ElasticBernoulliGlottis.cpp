@@ -1,5 +1,6 @@
 // Copyright (C) 2026 fsai developers
 #include "ElasticBernoulliGlottis.h"
+#include "waveform.h"
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -30,38 +31,24 @@ fsai::glottis::ElasticBernoulliGlottis::ElasticBernoulliGlottis(
 {
 }
 //-----------------------------------------------------------------------------
-void fsai::glottis::ElasticBernoulliGlottis::evaluate(
-    double t, std::span<const double> owned, Sample& s)
+fsai::glottis::SurfacePressure fsai::glottis::ElasticBernoulliGlottis::pressure(
+    double t, const std::vector<std::array<double, 2>>& x) const
 {
-  const double r
-      = _ramp > 0 and t < _ramp ? 0.5 * (1 - std::cos(M_PI * t / _ramp)) : 1.0;
-  const auto x = _fold.moved_surface(owned);
-  const auto sp = viscous_surface_pressure(
-      x, _fold.profile().geometry().depth, r * _par.p_sub, _par.p_sup, _par.rho,
-      _par.separation_ratio, _par.viscosity, _par.y_floor, _par.y_sep_min);
-  _fold.set_pressure(sp.p);
-  s.gap = sp.min_gap;
-  s.Q = sp.Q;
-  s.Q_inlet = sp.Q; // quasi-steady: no displaced volume
-  const auto f = _fold.pressure_force(x, sp.p);
-  s.drag = f[0];
-  s.lift = f[1];
-  const auto m = _fold.medial_motion(x);
-  s.h = m[0];
-  s.phi = m[1];
-  s.moment = 0; // no generalised rotation of a continuum
+  return viscous_surface_pressure(x, _fold.profile().geometry().depth,
+                                  pressure_ramp(t, _ramp) * _par.p_sub,
+                                  _par.p_sup, _par.rho, _par.separation_ratio,
+                                  _par.viscosity, _par.y_floor, _par.y_sep_min);
 }
 //-----------------------------------------------------------------------------
 fsai::glottis::Sample fsai::glottis::ElasticBernoulliGlottis::step()
 {
   const double t = _t + _par.dt;
-  Sample s;
   // H(x): the pressure of the surface moved by x, the fold's step under it,
   // its new surface displacement
   auto H = [&](std::span<const double> x, std::span<double> Hx)
   {
     _fold.restore_state();
-    evaluate(t, x, s);
+    _fold.set_pressure(pressure(t, _fold.moved_surface(x)).p);
     _fold.step();
     const auto u = _fold.surface_displacement();
     std::copy(u.begin(), u.end(), Hx.begin());
@@ -70,10 +57,20 @@ fsai::glottis::Sample fsai::glottis::ElasticBernoulliGlottis::step()
   std::vector<double> x = _fold.surface_prediction();
   const auto rep = _loop.step(t, x, H);
   // The sub-solver holds H(x_last): report the state it reached
-  const auto u = _fold.surface_displacement();
+  const auto xs = _fold.moved_surface(_fold.surface_displacement());
+  const auto sp = pressure(t, xs);
   Sample out;
-  evaluate(t, u, out);
   out.t = t;
+  out.gap = sp.min_gap;
+  out.Q = sp.Q;
+  out.Q_inlet = sp.Q; // quasi-steady: no displaced volume
+  const auto f = _fold.pressure_force(xs, sp.p);
+  out.drag = f[0];
+  out.lift = f[1];
+  const auto m = _fold.medial_motion(xs);
+  out.h = m[0];
+  out.phi = m[1];
+  out.moment = 0; // no generalised rotation of a continuum
   out.iterations = rep.iterations;
   // The explicit scheme has no iteration to converge (its residual, the
   // change of the surface over the step's solve, is in coupling.csv)

@@ -41,9 +41,9 @@ public:
   ElasticFold& fold() { return _fold; }
 
 private:
-  /// Surface pressure of the fold moved by `owned` (this rank's part) at
-  /// time t; fills the sample's flow quantities
-  void evaluate(double t, std::span<const double> owned, Sample& s);
+  /// Flow and pressure along the moved surface x at time t (p_sub ramped)
+  SurfacePressure pressure(double t,
+                           const std::vector<std::array<double, 2>>& x) const;
   BernoulliGlottisParameters _par;
   double _ramp;
   ElasticFold _fold;

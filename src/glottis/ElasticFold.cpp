@@ -121,11 +121,6 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   const auto all = common::allgather(comm, loc);
   const std::size_t n = all.size() / 3;
   fsai::require(n >= 20, "elastic fold: surface points", ">= 20", long(n));
-  std::vector<double> counts
-      = common::allgather(comm, std::vector<double>{double(_owned.size())});
-  _rank_offset.assign(counts.size() + 1, 0);
-  for (std::size_t r = 0; r < counts.size(); ++r)
-    _rank_offset[r + 1] = _rank_offset[r] + int(counts[r]);
   _order.resize(n);
   std::iota(_order.begin(), _order.end(), 0);
   std::stable_sort(_order.begin(), _order.end(),
@@ -137,10 +132,15 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
     ordered_of[_order[k]] = k;
     _X[k] = {all[3 * _order[k] + 1], all[3 * _order[k] + 2]};
   }
+  // This rank's points follow the lower ranks' in the gathered list
+  std::int64_t mine = std::int64_t(_owned.size()), first = 0;
+  MPI_Exscan(&mine, &first, 1, MPI_INT64_T, MPI_SUM, comm);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
+  if (rank == 0)
+    first = 0; // MPI_Exscan leaves rank 0's result undefined
   for (std::size_t i = 0; i < _owned.size(); ++i)
-    _my_ordered.push_back(ordered_of[_rank_offset[rank] + i]);
+    _my_ordered.push_back(ordered_of[first + i]);
 
   // Outward normals (the fold lies to the left of the point order)
   _n.resize(n);

@@ -118,10 +118,8 @@ private:
   mesh::MeshData _mesh;
   std::unique_ptr<structure::ElasticSolver> _solver;
   std::vector<std::int32_t> _owned; ///< owned surface dof blocks
-  /// Position of each owned point in the gathered (rank-ordered) list, and
-  /// the gathered index of each ordered point
+  /// The gathered (rank-ordered) index of each ordered point
   std::vector<std::size_t> _order;
-  std::vector<int> _rank_offset; // gathered index of rank r's first point
   std::vector<std::array<double, 2>> _X; // ordered reference points
   std::vector<std::array<double, 2>> _n; // their outward normals
   /// Ordered index of each of this rank's owned points

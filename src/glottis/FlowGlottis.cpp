@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "FlowGlottis.h"
 #include "BernoulliFlow.h"
+#include "waveform.h"
 #include <algorithm>
 #include <cmath>
 #include <common/Parameters.h>
@@ -433,10 +434,7 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
 {
   common::ScopedTimer timer("glottis: fe step");
   const double t = _t + _par.dt;
-  const double ramp = _par.ramp > 0 and t < _par.ramp
-                          ? 0.5 * (1 - std::cos(M_PI * t / _par.ramp))
-                          : 1.0;
-  _flow->set_inlet_pressure(ramp * _par.p_sub);
+  _flow->set_inlet_pressure(pressure_ramp(t, _par.ramp) * _par.p_sub);
   _flow->save_state();
   // The coupling variable (h, ℓφ) lives on rank 0; the map broadcasts it
   int rank;

@@ -78,3 +78,10 @@ fsai::glottis::CycleStats fsai::glottis::cycle_stats(
   s.closed_leakage = s.q_peak > 0 ? leak / s.q_peak : 0;
   return s;
 }
+//-----------------------------------------------------------------------------
+double fsai::glottis::pressure_ramp(double t, double duration)
+{
+  return duration > 0 and t < duration
+             ? 0.5 * (1 - std::cos(M_PI * t / duration))
+             : 1.0;
+}

@@ -28,6 +28,10 @@ struct CycleStats
   double q_peak_mean = 0;   ///< mean of the per-cycle peak flows [m³/s]
 };
 
+/// Factor of the subglottal pressure at time t when it ramps up smoothly
+/// over `duration` (½(1 − cos πt/duration), then 1; duration 0: 1)
+double pressure_ramp(double t, double duration);
+
 /// Statistics of the samples with t ≥ t_from (uniform or not)
 CycleStats cycle_stats(const std::vector<double>& t,
                        const std::vector<double>& gap,
