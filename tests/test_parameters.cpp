@@ -79,6 +79,21 @@ TEST_CASE("Command line overrides TOML, TOML overrides defaults", "[common]")
   CHECK(parse({"--config", cfg2}).h == 2.0);
 }
 
+TEST_CASE("Parameters tell which keys were given", "[common]")
+{
+  fsai::test::TempDir dir;
+  std::string cfg = write_file(dir, "g.toml", "[mesh]\nn = 4\n");
+  Demo d;
+  fsai::common::Parameters p("test", "test");
+  d.bind(p);
+  p.parse({"--config", cfg, "--run.model", "planar"});
+  CHECK(p.given("mesh.n"));    // TOML, even with the default's value
+  CHECK(p.given("run.model")); // command line, the same
+  CHECK(!p.given("mesh.h"));
+  CHECK(!p.given("run.flag"));
+  CHECK_THROWS(p.given("mesh.nope"));
+}
+
 TEST_CASE("Bad input raises one-line InputError", "[common]")
 {
   fsai::test::TempDir dir;

@@ -229,9 +229,19 @@ void fsai::common::Parameters::apply_toml(const std::string& path)
         throw InputError(where + ": invalid value '" + one_line(toml::format(v))
                          + "'");
       }
+      _from_toml.insert(key);
     }
   };
   walk(data, "");
+}
+//-----------------------------------------------------------------------------
+bool fsai::common::Parameters::given(const std::string& key) const
+{
+  auto it = std::find_if(_entries.begin(), _entries.end(),
+                         [&key](const Entry& e) { return e.key == key; });
+  if (it == _entries.end())
+    throw std::logic_error("Parameters::given: no parameter '" + key + "'");
+  return it->option->count() > 0 or _from_toml.count(key) > 0;
 }
 //-----------------------------------------------------------------------------
 nlohmann::json fsai::common::Parameters::to_json() const

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,10 @@ public:
   /// file. Throws HelpRequested after printing usage for -h/--help.
   void parse(const std::vector<std::string>& args);
 
+  /// Whether `key` was given on the command line or in the config file
+  /// (a scene may then choose its own default for it)
+  bool given(const std::string& key) const;
+
   /// Path given by --config ("" if none)
   const std::string& config_file() const { return _config_file; }
 
@@ -73,5 +78,6 @@ private:
   CLI::App _app;
   std::string _config_file;
   std::vector<Entry> _entries;
+  std::set<std::string> _from_toml; ///< keys the config file assigned
 };
 } // namespace fsai::common

@@ -5,29 +5,14 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
-namespace
-{
-fsai::coupling::CouplingParameters
-explicit_parameters(fsai::coupling::CouplingParameters cp, bool is_explicit)
-{
-  if (is_explicit)
-  {
-    cp.max_iterations = 1;
-    cp.accelerator.method = "constant";
-    cp.accelerator.omega = 1.0;
-  }
-  return cp;
-}
-} // namespace
-
 fsai::glottis::ElasticBernoulliGlottis::ElasticBernoulliGlottis(
     MPI_Comm comm, const FoldProfile& profile, const ElasticFoldParameters& ep,
     const ContactParameters& contact, const BernoulliGlottisParameters& bp,
     double ramp, const coupling::CouplingParameters& cp,
     const std::string& coupling_csv)
     : _par(bp), _ramp(ramp), _fold(comm, profile, ep, contact, bp.dt),
-      _explicit(ep.coupling == "explicit"),
-      _loop(comm, explicit_parameters(cp, _explicit), coupling_csv)
+      _explicit(ep.explicit_coupling(false)),
+      _loop(comm, elastic_coupling_parameters(_explicit, cp), coupling_csv)
 {
 }
 //-----------------------------------------------------------------------------

@@ -31,9 +31,10 @@ void fsai::glottis::ElasticFoldParameters::bind(fsai::common::Parameters& p)
         "--fold elastic: upper frequency of zeta [Hz]");
   p.add("elastic.contact_factor", contact_factor,
         "--fold elastic: contact penalty k_c = factor * E / h_surface");
-  p.add_choice("elastic.coupling", coupling, {"explicit", "implicit"},
-               "--fold elastic: coupling with the Bernoulli flow (explicit: "
-               "one fold solve per step; implicit: iterated, --coupling.*)");
+  p.add_choice("elastic.coupling", coupling, {"auto", "explicit", "implicit"},
+               "--fold elastic: coupling with the flow (explicit: one flow "
+               "and fold solve per step; implicit: iterated, --coupling.*; "
+               "auto: explicit with --flow bernoulli, implicit with fe)");
 }
 //-----------------------------------------------------------------------------
 void fsai::glottis::ElasticFoldParameters::validate() const
@@ -49,8 +50,22 @@ void fsai::glottis::ElasticFoldParameters::validate() const
   fsai::require(f_zeta_low >= 0 and f_zeta_low < f_zeta_high,
                 "--elastic.f_zeta_low", "in [0, f_zeta_high)", f_zeta_low);
   fsai::require_positive("--elastic.contact_factor", contact_factor);
-  fsai::require(coupling == "explicit" or coupling == "implicit",
-                "--elastic.coupling", "explicit or implicit", coupling);
+  fsai::require(coupling == "auto" or coupling == "explicit"
+                    or coupling == "implicit",
+                "--elastic.coupling", "auto, explicit or implicit", coupling);
+}
+//-----------------------------------------------------------------------------
+fsai::coupling::CouplingParameters
+fsai::glottis::elastic_coupling_parameters(bool is_explicit,
+                                           coupling::CouplingParameters cp)
+{
+  if (is_explicit)
+  {
+    cp.max_iterations = 1;
+    cp.accelerator.method = "constant";
+    cp.accelerator.omega = 1.0;
+  }
+  return cp;
 }
 //-----------------------------------------------------------------------------
 fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
@@ -90,11 +105,6 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   const auto dofs = dolfinx::fem::locate_dofs_topological(*V, 1, fold);
   const std::int32_t n_owned = V->dofmap()->index_map->size_local();
   const std::vector<double> Xd = V->tabulate_dof_coordinates(false);
-  const auto& P = profile.points();
-  std::vector<double> arc(P.size(), 0.0);
-  for (std::size_t i = 1; i < P.size(); ++i)
-    arc[i]
-        = arc[i - 1] + std::hypot(P[i][0] - P[i - 1][0], P[i][1] - P[i - 1][1]);
   std::vector<double> loc; // (s, X, Y) per owned point
   for (auto d : dofs)
   {
@@ -102,21 +112,7 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
       continue;
     _owned.push_back(d);
     const double x = Xd[3 * d], y = Xd[3 * d + 1];
-    double best = std::numeric_limits<double>::infinity(), s = 0;
-    for (std::size_t i = 0; i + 1 < P.size(); ++i)
-    {
-      const double tx = P[i + 1][0] - P[i][0], ty = P[i + 1][1] - P[i][1];
-      const double l2 = tx * tx + ty * ty;
-      const double f = std::clamp(
-          ((x - P[i][0]) * tx + (y - P[i][1]) * ty) / l2, 0.0, 1.0);
-      const double dx = P[i][0] + f * tx - x, dy = P[i][1] + f * ty - y;
-      if (dx * dx + dy * dy < best)
-      {
-        best = dx * dx + dy * dy;
-        s = arc[i] + f * (arc[i + 1] - arc[i]);
-      }
-    }
-    loc.insert(loc.end(), {s, x, y});
+    loc.insert(loc.end(), {profile.arc_length({x, y}), x, y});
   }
   const auto all = common::allgather(comm, loc);
   const std::size_t n = all.size() / 3;

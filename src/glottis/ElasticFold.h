@@ -20,6 +20,7 @@
 #pragma once
 #include "FoldProfile.h"
 #include "HertzContact.h"
+#include <coupling/FixedPointCoupling.h>
 #include <memory>
 #include <mesh/MeshData.h>
 #include <mpi.h>
@@ -53,17 +54,34 @@ struct ElasticFoldParameters
   /// i.e. a fraction 1/factor of what the first cell's own stiffness
   /// allows; larger factors stiffen the Newton solves
   double contact_factor = 10;
-  /// Coupling of the fold with the Bernoulli flow: "explicit" (the
-  /// pressure of the Newmark-predicted surface, one solve per step) or
-  /// "implicit" (iterated to the [coupling] tolerance). The quasi-steady
-  /// load has no added mass, so the explicit scheme is stable; it gave the
-  /// implicit scheme's cycle (f0 equal, peak flow −0.35 %) at 0.4 of its
-  /// cost, while the implicit iteration stalled at 1e−5–1e−3 in about 35
-  /// steps per 0.25 s near contact changes and diverged in a few
-  std::string coupling = "explicit";
+  /// Coupling of the fold with the flow: "explicit" (the load of the
+  /// Newmark-predicted surface, one solve per step), "implicit" (iterated
+  /// to the [coupling] tolerance) or "auto": explicit with the Bernoulli
+  /// flow, implicit with the FE flow.
+  /// - Bernoulli: the quasi-steady load has no added mass, so the explicit
+  ///   scheme is stable; it gave the implicit scheme's cycle (f0 equal,
+  ///   peak flow −0.35 %) at 0.4 of its cost, while the implicit iteration
+  ///   stalled at 1e−5–1e−3 in about 35 steps per 0.25 s near contact
+  ///   changes and diverged in a few.
+  /// - FE flow: the air the surface displaces through the channel is an
+  ///   added mass far above that of the fold's surface layer, and the
+  ///   explicit scheme diverges (lift ×3–4 per step from the first steps,
+  ///   a cell inverted at step 13: ElasticFlowGlottis.h)
+  std::string coupling = "auto";
+  /// Whether the fold is coupled explicitly, with a flow that has
+  /// (FE) or has not (Bernoulli) an added mass
+  bool explicit_coupling(bool added_mass) const
+  {
+    return coupling == "explicit" or (coupling == "auto" and !added_mass);
+  }
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };
+
+/// The [coupling] parameters of the fold's coupling loop: one application
+/// of the map, unrelaxed, for an explicit coupling
+coupling::CouplingParameters
+elastic_coupling_parameters(bool is_explicit, coupling::CouplingParameters cp);
 
 class ElasticFold
 {

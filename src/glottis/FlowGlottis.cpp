@@ -19,19 +19,6 @@ namespace
 {
 constexpr double lever = 1e-3; // ℓ: coupling variable (h, ℓφ) [m]
 
-// Midpoint of triangle c in the mesh's current coordinates
-std::array<double, 2> cell_midpoint(const dolfinx::mesh::Mesh& mesh,
-                                    std::int32_t c)
-{
-  const auto x = mesh.geometry().x();
-  std::array<double, 2> mid{0, 0};
-  for (auto n : mesh.geometry().dofmap().links(c))
-  {
-    mid[0] += x[3 * n] / 3;
-    mid[1] += x[3 * n + 1] / 3;
-  }
-  return mid;
-}
 } // namespace
 
 void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
@@ -135,114 +122,16 @@ fsai::glottis::FlowGlottis::FlowGlottis(
     const coupling::CouplingParameters& cp, const std::string& coupling_csv,
     std::size_t coupling_rows_kept)
     : _comm(comm), _profile(profile), _contact(contact), _par(p),
-      _fold(profile, vf)
+      _fold(profile, vf), _channel(comm, profile, p, fp, ap)
 {
-  p.validate();
-  const auto& g = profile.geometry();
-  fsai::require(p.g_min < g.rest_gap, "--closure.g_min", "< the rest gap",
-                p.g_min);
-  _mesh = mesh::glottis_channel(comm, profile, p.h_far, p.h_gap, p.fine_height,
-                                p.grading, p.h_jet, p.jet_height);
-  auto find = [&](const char* name)
-  { return _mesh.facet_tags->find(_mesh.facet_tag(name)); };
-  _fold_facets = find("fold");
-  _inlet_facets = find("inlet");
-  fluid::FluidBoundaries fb;
-  fb.inlet_penalty = _inlet_facets;
-  fb.outlet = find("outlet");
-  fb.walls = find("wall");
-  fb.walls.insert(fb.walls.end(), _fold_facets.begin(), _fold_facets.end());
-  fb.symmetry = find("axis");
-  fp.p_in = 0; // set_inlet_pressure() ramps it
-  _flow = std::make_unique<fluid::FluidSolver>(_mesh.mesh, fb, fp, p.dt);
-  ale::MeshMotionBoundaries mb;
-  mb.interface = _fold_facets;
-  mb.fixed = _inlet_facets;
-  for (const char* name : {"outlet", "wall"})
-  {
-    auto f = find(name);
-    mb.fixed.insert(mb.fixed.end(), f.begin(), f.end());
-  }
-  const auto V = _flow->velocity_space();
-  _F = std::make_shared<dolfinx::fem::Function<double>>(V);
-  _fold_dofs = dolfinx::fem::locate_dofs_topological(*V, 1, _fold_facets);
-  const std::vector<double> X = V->tabulate_dof_coordinates(false);
-  _X_ref = X;
-  for (auto d : _fold_dofs)
-    _fold_X.push_back({X[3 * d], X[3 * d + 1]});
-  mb.slip = {{1, fb.symmetry}};
-  if (p.gap_motion == "algebraic")
-  {
-    // The lower envelope of the fold boundary near the axis as the mesh
-    // has it: every fold node (all ranks) whose reference height is
-    // within rest gap + R of the axis, by x. Each node below that envelope
-    // hangs from the boundary segment above it (column top = linear
-    // interpolation of the two boundary nodes, exactly the discrete
-    // boundary, so no node can pass it); every rank tests its owned and
-    // ghost dofs by the same geometric rule
-    const double y_lim = g.rest_gap + p.gap_columns * g.medial_radius;
-    std::vector<double> loc;
-    for (auto& X : _fold_X)
-      if (X[1] <= 1.5 * y_lim)
-        loc.insert(loc.end(), {X[0], X[1]});
-    const std::vector<double> all = common::allgather(comm, loc);
-    std::vector<std::array<double, 2>> env;
-    for (std::size_t k = 0; k + 1 < all.size(); k += 2)
-      env.push_back({all[k], all[k + 1]});
-    std::sort(env.begin(), env.end());
-    env.erase(std::unique(env.begin(), env.end()), env.end());
-    const std::int32_t nblocks = V->dofmap()->index_map->size_local()
-                                 + V->dofmap()->index_map->num_ghosts();
-    for (std::int32_t d = 0; d < nblocks and env.size() >= 2; ++d)
-    {
-      const double x = _X_ref[3 * d], y = _X_ref[3 * d + 1];
-      auto it = std::upper_bound(env.begin(), env.end(),
-                                 std::array<double, 2>{x, 1e300});
-      if (it == env.begin() or it == env.end())
-        continue;
-      const auto& A = *(it - 1);
-      const auto& B = *it;
-      const double t = B[0] > A[0] ? (x - A[0]) / (B[0] - A[0]) : 0.0;
-      const double yc = (1 - t) * A[1] + t * B[1];
-      if (yc <= y_lim and y < yc - 1e-3 * g.rest_gap)
-      {
-        _gap_dofs.push_back(d);
-        _gap_nodes.push_back({A, B});
-        _gap_t.push_back(t);
-        _gap_fraction.push_back(y / yc);
-      }
-    }
-    mb.prescribed = _gap_dofs;
-  }
-  _motion = std::make_unique<ale::MeshMotion>(_mesh.mesh,
-                                              _flow->velocity_space(), mb, ap);
   _loop = std::make_unique<coupling::FixedPointCoupling>(comm, cp, coupling_csv,
                                                          coupling_rows_kept);
-  // Cells that can become porous: reference midpoint within the fold's
-  // x-extent, below the attachment band
-  const auto& mesh = *_mesh.mesh;
-  const std::int32_t ncells = mesh.topology().index_map(2)->size_local()
-                              + mesh.topology().index_map(2)->num_ghosts();
-  for (std::int32_t c = 0; c < ncells; ++c)
-  {
-    const auto [cx, cy] = cell_midpoint(mesh, c);
-    if (cx > 0 and cx < g.fold_length and cy < g.half_height - g.taper)
-      _candidates.push_back(c);
-  }
-  // Upstream fold facets: midpoint (reference configuration) x < medial_x
-  {
-    auto xg = dolfinx::mesh::entities_to_geometry(mesh, 1, _fold_facets, false);
-    const auto x = mesh.geometry().x();
-    for (std::size_t i = 0; i < _fold_facets.size(); ++i)
-      if (0.5 * (x[3 * xg[2 * i]] + x[3 * xg[2 * i + 1]]) < g.medial_x)
-        _upstream_fold_facets.push_back(_fold_facets[i]);
-  }
-  if (p.superpose_motion and _motion->linear())
+  if (p.superpose_motion and _channel.linear_motion())
   {
     const auto axis = _fold.axis();
     for (int k = 0; k < 3; ++k)
     {
-      set_interface(
+      _channel.set_interface(
           [&](const std::array<double, 2>& X) -> std::array<double, 2>
           {
             const double w = _profile.weight(X);
@@ -253,26 +142,13 @@ fsai::glottis::FlowGlottis::FlowGlottis(
               return {-w * ry, w * rx};
             return {0.0, w};
           });
-      _extension_basis[k] = _motion->extension();
+      _extension_basis[k] = _channel.extension();
     }
     _d_move.resize(_extension_basis[0].size());
   }
   _q_n = _q_nn = _fold.q();
   std::array<double, 2> Q{0, 0};
   _fold.initialise(Q);
-}
-
-std::int64_t fsai::glottis::FlowGlottis::cells() const
-{
-  return _mesh.mesh->topology().index_map(2)->size_global();
-}
-
-std::array<std::int64_t, 2> fsai::glottis::FlowGlottis::cells_per_rank() const
-{
-  const std::int64_t n = _mesh.mesh->topology().index_map(2)->size_local();
-  std::array<std::int64_t, 2> r{-n, n};
-  MPI_Allreduce(MPI_IN_PLACE, r.data(), 2, MPI_INT64_T, MPI_MAX, _comm);
-  return {-r[0], r[1]};
 }
 
 std::array<double, 2> fsai::glottis::FlowGlottis::boundary_displacement(
@@ -287,70 +163,18 @@ std::array<double, 2> fsai::glottis::FlowGlottis::boundary_displacement(
 
 double fsai::glottis::FlowGlottis::boundary_lift(const RigidMotion& m) const
 {
-  // The fold's half-gap g (lowest point of the rigidly moved surface). The
-  // fluid boundary stops at g_min: below g_min + b it is lifted as a whole
-  // by g_b − g with g_b = g_min + b exp((g − g_min − b)/b) (C¹, b = g_min),
-  // so its lowest point stays above g_min however far the fold crosses the
-  // axis. Lifting the whole surface keeps its shape: an earlier per-point
-  // clamp flattened the superior edge round onto the axis, and the cells
-  // under it, compressed 10× at one column and 20× at the next, inverted
-  // at p_sub = 1200 Pa. The part of the gap the fold occupies is porous.
+  // By the fold's half-gap g, the lowest point of the rigidly moved surface
   double g = 1e300;
   for (const auto& p : moved_surface(_profile, m))
     g = std::min(g, p[1]);
-  const double b = _par.g_min;
-  if (g >= _par.g_min + b)
-    return 0.0;
-  return _par.g_min + b * std::exp((g - _par.g_min - b) / b) - g;
+  return glottis::boundary_lift(g, _par.g_min);
 }
 
 void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
 {
   const double lift = boundary_lift(m);
-  set_interface([&](const std::array<double, 2>& X)
-                { return boundary_displacement(m, X, lift); });
-}
-
-void fsai::glottis::FlowGlottis::set_interface(
-    const std::function<std::array<double, 2>(const std::array<double, 2>&)>& u)
-{
-  auto a = _motion->interface_displacement().x()->mutable_array();
-  for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
-  {
-    const auto ui = u(_fold_X[i]);
-    a[2 * _fold_dofs[i]] = ui[0];
-    a[2 * _fold_dofs[i] + 1] = ui[1];
-  }
-  // Algebraic gap motion: the column of nodes under the boundary point
-  // above (between boundary nodes A and B) moves with it horizontally (the axis
-  // nodes slide along the axis) and is compressed vertically, a node at height
-  // fraction s = y/y_s keeping s. The map (x, s) → (x + U_x(x), s Y(x)), Y the
-  // new surface height, has Jacobian (1 + U_x') Y > 0: no node passes the
-  // boundary above it however close the fold comes. (Shifting x by s U_x
-  // instead shears the columns: with the fold rotated by φ they tilt to a slope
-  // Y/U_x below the surface's φ and the cells under the superior edge invert.)
-  for (std::size_t i = 0; i < _gap_dofs.size(); ++i)
-  {
-    const auto ua = u(_gap_nodes[i][0]);
-    const auto ub = u(_gap_nodes[i][1]);
-    const double t = _gap_t[i];
-    a[2 * _gap_dofs[i]] = (1 - t) * ua[0] + t * ub[0];
-    a[2 * _gap_dofs[i] + 1] = _gap_fraction[i] * ((1 - t) * ua[1] + t * ub[1]);
-  }
-}
-
-void fsai::glottis::FlowGlottis::mark_porous(const RigidMotion& m)
-{
-  // χ = 1 in the cells whose (current) midpoint lies inside the moved fold
-  auto& chi = _flow->porous_indicator();
-  auto c_arr = chi.x()->mutable_array();
-  const auto dofmap = chi.function_space()->dofmap();
-  for (auto c : _candidates)
-  {
-    const auto mid = cell_midpoint(*_mesh.mesh, c);
-    c_arr[dofmap->cell_dofs(c)[0]]
-        = _profile.contains(m.reference_of(mid)) ? 1.0 : 0.0;
-  }
+  _channel.set_interface([&](const std::array<double, 2>& X)
+                         { return boundary_displacement(m, X, lift); });
 }
 
 fsai::ale::MeshQuality
@@ -360,7 +184,7 @@ fsai::glottis::FlowGlottis::move_mesh(double t, const std::array<double, 2>& q)
   if (_extension_basis[0].empty())
   {
     set_boundary(m);
-    return _motion->move(t);
+    return _channel.move(t);
   }
   // boundary_displacement(m, X, lift) = w(X) [(c − 1) r + s r⊥ + (lift − h)
   // e_y] (RigidMotion::displacement), r = X − X_EA, r⊥ = (−r_y, r_x)
@@ -370,7 +194,7 @@ fsai::glottis::FlowGlottis::move_mesh(double t, const std::array<double, 2>& q)
     _d_move[i] = alpha[0] * _extension_basis[0][i]
                  + alpha[1] * _extension_basis[1][i]
                  + alpha[2] * _extension_basis[2][i];
-  return _motion->move_to(_d_move, t);
+  return _channel.move_to(_d_move, t);
 }
 
 std::array<double, 2>
@@ -381,34 +205,18 @@ fsai::glottis::FlowGlottis::evaluate(double t, const std::array<double, 2>& q,
   // 1. fold boundary and mesh (the same move --replay makes); the fold
   // wall moves with the mesh
   move_mesh(t, q);
-  _motion->velocity(_flow->mesh_velocity(), _par.dt);
-  {
-    auto w = _flow->mesh_velocity().x()->array();
-    auto gw = _flow->wall_velocity().x()->mutable_array();
-    for (auto d : _fold_dofs)
-      for (int k = 0; k < 2; ++k)
-        gw[2 * d + k] = w[2 * d + k];
-  }
-  // 2. porous region, flow
-  mark_porous(m);
-  _flow->restore_state();
-  _flow->step();
-  // 3. generalised forces of the fluid's nodal forces (per unit depth, so
-  //    times L_g) by the tapered virtual displacements
-  _flow->nodal_forces(_fold_facets, *_F);
-  const double Lg = _profile.geometry().depth;
-  const auto F = _F->x()->array();
-  const std::int32_t owned
-      = _flow->velocity_space()->dofmap()->index_map->size_local();
+  _channel.set_wall_velocity();
+  // 2. porous region: the cells inside the moved fold; flow
+  _channel.mark_porous([&](const std::array<double, 2>& x)
+                       { return _profile.contains(m.reference_of(x)); });
+  _channel.solve_flow();
+  // 3. generalised forces of the fluid's nodal forces by the tapered
+  //    virtual displacements
   std::array<double, 4> loc{0, 0, 0, 0}; // Q_h, Q_φ, F_x, F_y
-  for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
+  for (const auto& [X, f] : _channel.fold_forces())
   {
-    const auto d = _fold_dofs[i];
-    if (d >= owned)
-      continue;
-    const double f[2] = {Lg * F[2 * d], Lg * F[2 * d + 1]};
-    const double w = _profile.weight(_fold_X[i]);
-    const auto du = m.derivatives(_fold_X[i]);
+    const double w = _profile.weight(X);
+    const auto du = m.derivatives(X);
     loc[0] += w * (f[0] * du[0][0] + f[1] * du[0][1]);
     loc[1] += w * (f[0] * du[1][0] + f[1] * du[1][1]);
     loc[2] += f[0];
@@ -434,8 +242,8 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
 {
   common::ScopedTimer timer("glottis: fe step");
   const double t = _t + _par.dt;
-  _flow->set_inlet_pressure(pressure_ramp(t, _par.ramp) * _par.p_sub);
-  _flow->save_state();
+  _channel.flow().set_inlet_pressure(pressure_ramp(t, _par.ramp) * _par.p_sub);
+  _channel.flow().save_state();
   // The coupling variable (h, ℓφ) lives on rank 0; the map broadcasts it
   int rank;
   MPI_Comm_rank(_comm, &rank);
@@ -459,7 +267,7 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
                            }
                          });
   _fold.accept();
-  _motion->advance();
+  _channel.advance();
   _q_nn = _q_n;
   _q_n = _fold.q();
   _load_nn = _load_n;
@@ -471,18 +279,10 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
   s.phi = _fold.q()[1];
   s.iterations = rep.iterations;
   s.converged = rep.converged;
-  // Glottal flow through the section x = medial_x (both folds, depth L_g).
-  // The inlet flux also carries the air that the moving inferior surface
-  // displaces (spikes at the closing instants, a false "leakage"). With
-  // div v = 0, the flux through the section is the inlet flux minus the
-  // flux through the upstream fold wall, where v equals the mesh velocity of
-  // the actual fluid boundary (held at g_min near the axis, which a rigid-
-  // surface correction gets wrong). The section moves with the mesh there;
-  // the axis is a slip line, so this differs from a fixed section only by
-  // the mesh's horizontal motion near the axis.
-  const double depth2 = 2 * _profile.geometry().depth;
-  s.Q_inlet = -depth2 * _flow->flow_rate(_inlet_facets);
-  s.Q = s.Q_inlet - depth2 * _flow->flow_rate(_upstream_fold_facets);
+  // Glottal flow through the section x = medial_x (both folds, depth L_g)
+  const auto Q = _channel.flow_rates();
+  s.Q_inlet = Q[0];
+  s.Q = Q[1];
   const auto surf = moved_surface(_profile, _fold.motion());
   s.gap = 1e300;
   for (auto& p : surf)
@@ -520,8 +320,8 @@ std::array<double, 2> fsai::glottis::FlowGlottis::predict()
 fsai::io::RankState fsai::glottis::FlowGlottis::save() const
 {
   io::RankState state;
-  _flow->save(state, "flow.");
-  _motion->save(state, "ale.");
+  _channel.flow().save(state, "flow.");
+  _channel.motion().save(state, "ale.");
   _loop->save(state, "coupling.");
   const auto f = _fold.state();
   state["fold.state"] = {f[0][0], f[0][1], f[1][0], f[1][1], f[2][0], f[2][1]};
@@ -538,8 +338,8 @@ void fsai::glottis::FlowGlottis::load(const std::vector<io::RankState>& ranks)
   std::string error;
   try
   {
-    _flow->load(ranks, "flow.");
-    _motion->load(ranks, "ale.");
+    _channel.flow().load(ranks, "flow.");
+    _channel.motion().load(ranks, "ale.");
     // The coupling unknowns (h, ℓφ) live on rank 0: its columns come from
     // the checkpoint's rank 0; the other ranks keep empty columns
     int rank = 0;
@@ -572,11 +372,10 @@ void fsai::glottis::FlowGlottis::load(const std::vector<io::RankState>& ranks)
 //-----------------------------------------------------------------------------
 void fsai::glottis::FlowGlottis::write_last_good(const std::string& path)
 {
-  _flow->restore_state();
-  _motion->rewind();
+  _channel.rewind();
   _fold.set_state(_fold.state());
-  io::TimeSeriesWriter xdmf(path,
-                            {_flow->velocity(), _flow->pressure(),
-                             _flow->porous_field(), _motion->displacement()});
+  auto& f = _channel.flow();
+  io::TimeSeriesWriter xdmf(path, {f.velocity(), f.pressure(), f.porous_field(),
+                                   _channel.motion().displacement()});
   xdmf.write(_t);
 }

@@ -23,6 +23,7 @@
 // virtual displacements, plus Hertz, one Newmark step of the fold
 // (FixedPointCoupling: Aitken or IQN-ILS, as for Turek–Hron).
 #pragma once
+#include "FlowChannel.h"
 #include "FoldProfile.h"
 #include "HertzContact.h"
 #include "Sample.h"
@@ -142,55 +143,38 @@ public:
   /// Time of the last accepted step
   double time() const { return _t; }
   const TwoDofFold& fold() const { return _fold; }
-  fluid::FluidSolver& flow() { return *_flow; }
-  const ale::MeshMotion& motion() const { return *_motion; }
-  std::int64_t flow_dofs() const { return _flow->dofs(); }
-  std::int64_t cells() const;
+  fluid::FluidSolver& flow() { return _channel.flow(); }
+  const ale::MeshMotion& motion() const { return _channel.motion(); }
+  std::int64_t flow_dofs() const { return _channel.flow().dofs(); }
+  std::int64_t cells() const { return _channel.cells(); }
   /// Fewest and most cells owned by one rank (collective)
-  std::array<std::int64_t, 2> cells_per_rank() const;
+  std::array<std::int64_t, 2> cells_per_rank() const
+  {
+    return _channel.cells_per_rank();
+  }
   /// Reference (rest) coordinates of the velocity dof blocks, owned and
   /// ghost, 3 per block
-  const std::vector<double>& reference_coordinates() const { return _X_ref; }
+  const std::vector<double>& reference_coordinates() const
+  {
+    return _channel.reference_coordinates();
+  }
 
 private:
   /// The coupling map: fold state guess → new fold state
   std::array<double, 2> evaluate(double t, const std::array<double, 2>& q,
                                  Sample& s);
   void set_boundary(const RigidMotion& m);
-  /// Interface values of the mesh motion (fold nodes and gap columns) for
-  /// a displacement u(X) of the fold surface's reference points
-  void set_interface(
-      const std::function<std::array<double, 2>(const std::array<double, 2>&)>&
-          u);
   /// Extensions of the three fields B of superpose_motion (empty: off)
   std::array<std::vector<double>, 3> _extension_basis;
   std::vector<double> _d_move; // their combination, for move_to()
-  void mark_porous(const RigidMotion& m);
 
   MPI_Comm _comm;
   const FoldProfile& _profile;
   ContactParameters _contact;
   FlowGlottisParameters _par;
   TwoDofFold _fold;
-  mesh::MeshData _mesh;
-  std::vector<std::int32_t> _fold_facets, _inlet_facets;
-  /// Fold facets upstream of the glottal section x = medial_x (reference
-  /// midpoint): the flow through that section is the inlet flux minus the
-  /// volume these moving walls displace
-  std::vector<std::int32_t> _upstream_fold_facets;
-  std::unique_ptr<fluid::FluidSolver> _flow;
-  std::unique_ptr<ale::MeshMotion> _motion;
+  FlowChannel _channel;
   std::unique_ptr<coupling::FixedPointCoupling> _loop;
-  std::shared_ptr<dolfinx::fem::Function<double>> _F; // nodal forces
-  std::vector<std::int32_t> _fold_dofs; // velocity-space blocks on the fold
-  std::vector<std::array<double, 2>> _fold_X; // their reference coordinates
-  std::vector<double> _X_ref;                 // all velocity blocks, reference
-  /// Algebraic gap motion: dof blocks under the medial region
-  std::vector<std::int32_t> _gap_dofs;
-  /// the two boundary nodes (reference) above each, the position t between
-  /// them and the height fraction under their chord
-  std::vector<std::array<std::array<double, 2>, 2>> _gap_nodes;
-  std::vector<double> _gap_t, _gap_fraction;
   /// Displacement of the fluid boundary at reference surface point X:
   /// tapered rigid motion plus the vertical lift
   std::array<double, 2> boundary_displacement(const RigidMotion& m,
@@ -198,7 +182,6 @@ private:
                                               double lift) const;
   /// Vertical lift of the whole fluid boundary that keeps it above g_min
   double boundary_lift(const RigidMotion& m) const;
-  std::vector<std::int32_t> _candidates; // cells that may turn porous
   std::array<double, 2> _q_n{}, _q_nn{};
   /// Generalised fluid load (Q_h, Q_φ) of the last evaluation and of the
   /// last two accepted steps (the "load" predictor)

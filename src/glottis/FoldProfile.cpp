@@ -1,8 +1,10 @@
 // Copyright (C) 2026 fsai developers
 #include "FoldProfile.h"
+#include <algorithm>
 #include <cmath>
 #include <common/Parameters.h>
 #include <common/errors.h>
+#include <limits>
 
 void fsai::glottis::GlottisGeometry::bind(fsai::common::Parameters& p)
 {
@@ -203,13 +205,42 @@ fsai::glottis::FoldProfile::mass_properties(double density) const
 
 bool fsai::glottis::FoldProfile::contains(const std::array<double, 2>& X) const
 {
-  // Even–odd rule over the closed polygon (surface + wall segment)
+  return polygon_contains(_pts, X);
+}
+
+double
+fsai::glottis::FoldProfile::arc_length(const std::array<double, 2>& X) const
+{
+  // Of the nearest point of the polyline
+  double best = std::numeric_limits<double>::infinity(), s = 0, arc = 0;
+  for (std::size_t i = 0; i + 1 < _pts.size(); ++i)
+  {
+    const auto& P = _pts[i];
+    const double tx = _pts[i + 1][0] - P[0], ty = _pts[i + 1][1] - P[1];
+    const double l2 = tx * tx + ty * ty;
+    const double f
+        = std::clamp(((X[0] - P[0]) * tx + (X[1] - P[1]) * ty) / l2, 0.0, 1.0);
+    const double dx = P[0] + f * tx - X[0], dy = P[1] + f * ty - X[1];
+    if (dx * dx + dy * dy < best)
+    {
+      best = dx * dx + dy * dy;
+      s = arc + f * std::sqrt(l2);
+    }
+    arc += std::sqrt(l2);
+  }
+  return s;
+}
+
+bool fsai::glottis::polygon_contains(
+    const std::vector<std::array<double, 2>>& p, const std::array<double, 2>& X)
+{
+  // Even–odd rule
   bool in = false;
-  const std::size_t n = _pts.size();
+  const std::size_t n = p.size();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++)
   {
-    const auto& a = _pts[i];
-    const auto& b = _pts[j];
+    const auto& a = p[i];
+    const auto& b = p[j];
     if ((a[1] > X[1]) != (b[1] > X[1])
         and X[0] < (b[0] - a[0]) * (X[1] - a[1]) / (b[1] - a[1]) + a[0])
     {

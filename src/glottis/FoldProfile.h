@@ -98,6 +98,9 @@ public:
   MassProperties mass_properties(double density) const;
   /// True if the reference point lies inside the fold
   bool contains(const std::array<double, 2>& X) const;
+  /// Arc length from the inferior attachment along the surface to the
+  /// point of the surface nearest to X [m]
+  double arc_length(const std::array<double, 2>& X) const;
 
 private:
   GlottisGeometry _g;
@@ -107,6 +110,11 @@ private:
   std::vector<std::array<double, 2>> _mid;
   std::vector<double> _wmid;
 };
+
+/// Whether X lies inside the closed polygon p (the last point joined to the
+/// first; even–odd rule)
+bool polygon_contains(const std::vector<std::array<double, 2>>& p,
+                      const std::array<double, 2>& X);
 
 /// Rigid motion of the profile by (h, φ) about the elastic axis
 struct RigidMotion

@@ -1,0 +1,208 @@
+// Copyright (C) 2026 fsai developers
+#include "ElasticFlowGlottis.h"
+#include "waveform.h"
+#include <algorithm>
+#include <cmath>
+#include <common/errors.h>
+#include <common/mpi_gather.h>
+#include <common/timer.h>
+#include <fmt/format.h>
+#include <io/TimeSeriesWriter.h>
+#include <numeric>
+#include <stdexcept>
+
+namespace
+{
+// Linear interpolation at s of the values v(k) given at the sorted nodes
+// s_k (constant beyond the ends)
+template <typename V>
+auto interpolate(const std::vector<double>& s_k, double s, V v)
+{
+  auto it = std::upper_bound(s_k.begin(), s_k.end(), s);
+  if (it == s_k.begin())
+    return v(0);
+  if (it == s_k.end())
+    return v(s_k.size() - 1);
+  const std::size_t j = std::size_t(it - s_k.begin());
+  const double len = s_k[j] - s_k[j - 1];
+  const double f = len > 0 ? (s - s_k[j - 1]) / len : 0.0;
+  auto a = v(j - 1);
+  const auto b = v(j);
+  for (std::size_t c = 0; c < a.size(); ++c)
+    a[c] += f * (b[c] - a[c]);
+  return a;
+}
+} // namespace
+
+fsai::glottis::ElasticFlowGlottis::ElasticFlowGlottis(
+    MPI_Comm comm, const FoldProfile& profile, const ElasticFoldParameters& ep,
+    const ContactParameters& contact, const FlowGlottisParameters& p,
+    fluid::FluidParameters fp, const ale::MeshMotionParameters& ap,
+    const coupling::CouplingParameters& cp, const std::string& coupling_csv)
+    : _comm(comm), _profile(profile), _par(p),
+      _fold(comm, profile, ep, contact, p.dt),
+      _channel(comm, profile, p, fp, ap), _explicit(ep.explicit_coupling(true)),
+      _loop(comm, elastic_coupling_parameters(_explicit, cp), coupling_csv)
+{
+  for (const auto& X : _fold.surface_reference())
+    _s.push_back(_profile.arc_length(X));
+  fsai::require(std::is_sorted(_s.begin(), _s.end()),
+                "elastic fold: surface points", "ordered by arc length",
+                "unordered");
+}
+//-----------------------------------------------------------------------------
+double
+fsai::glottis::ElasticFlowGlottis::arc_length(const std::array<double, 2>& X)
+{
+  auto [it, added] = _arc_cache.try_emplace(X, 0.0);
+  if (added)
+    it->second = _profile.arc_length(X);
+  return it->second;
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::ElasticFlowGlottis::move_boundary(
+    double t, const std::vector<std::array<double, 2>>& x)
+{
+  const auto& X = _fold.surface_reference();
+  double g = 1e300;
+  for (const auto& p : x)
+    g = std::min(g, p[1]);
+  const double lift = boundary_lift(g, _par.g_min);
+  // The fluid boundary: the fold surface's displacement at the same arc
+  // length, plus the lift, tapered to the wall like the 2-DOF fold's
+  _channel.set_interface(
+      [&](const std::array<double, 2>& Y) -> std::array<double, 2>
+      {
+        auto u = interpolate(_s, arc_length(Y),
+                             [&](std::size_t k) -> std::array<double, 2> {
+                               return {x[k][0] - X[k][0], x[k][1] - X[k][1]};
+                             });
+        u[1] += _profile.weight(Y) * lift;
+        return u;
+      });
+  _channel.move(t);
+  _channel.set_wall_velocity();
+  // Ω^P_t: inside the deformed fold (the polyline ends on the wall, y = H:
+  // closed along it)
+  _channel.mark_porous([&](const std::array<double, 2>& m)
+                       { return polygon_contains(x, m); });
+}
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::glottis::ElasticFlowGlottis::surface_pressure()
+{
+  const auto all = common::allgather(_comm, _channel.fold_pressure());
+  const std::size_t n = all.size() / 3;
+  if (_p_order.size() != n)
+  {
+    // The same owned fold dofs in the same rank order at every call
+    std::vector<double> s(n);
+    for (std::size_t i = 0; i < n; ++i)
+      s[i] = _profile.arc_length({all[3 * i], all[3 * i + 1]});
+    _p_order.resize(n);
+    std::iota(_p_order.begin(), _p_order.end(), 0);
+    std::stable_sort(_p_order.begin(), _p_order.end(),
+                     [&](auto a, auto b) { return s[a] < s[b]; });
+    _p_s.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+      _p_s[k] = s[_p_order[k]];
+  }
+  std::vector<double> p;
+  p.reserve(_s.size());
+  for (double s : _s)
+    p.push_back(interpolate(_p_s, s,
+                            [&](std::size_t k) -> std::array<double, 1> {
+                              return {all[3 * _p_order[k] + 2]};
+                            })[0]);
+  return p;
+}
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::glottis::ElasticFlowGlottis::predict()
+{
+  if (_par.predictor == "displacement" or _steps < 2)
+    return _fold.surface_prediction();
+  std::vector<double> p(_p_n.size());
+  for (std::size_t k = 0; k < p.size(); ++k)
+    p[k] = 2 * _p_n[k] - _p_nn[k];
+  // The trial step is repeated by the first evaluation (H restores the
+  // fold's state first)
+  _fold.restore_state();
+  _fold.set_pressure(p);
+  _fold.step();
+  return _fold.surface_displacement();
+}
+//-----------------------------------------------------------------------------
+fsai::glottis::Sample fsai::glottis::ElasticFlowGlottis::step()
+{
+  common::ScopedTimer timer("glottis: elastic fe step");
+  const double t = _t + _par.dt;
+  auto& flow = _channel.flow();
+  flow.set_inlet_pressure(pressure_ramp(t, _par.ramp) * _par.p_sub);
+  flow.save_state();
+  _fold.save_state();
+  // H(x): fluid boundary and mesh at the surface moved by x, the flow step,
+  // the fold's step under its pressure, the fold's new surface displacement
+  auto H = [&](std::span<const double> x, std::span<double> Hx)
+  {
+    move_boundary(t, _fold.moved_surface(x));
+    _channel.solve_flow();
+    _p = surface_pressure();
+    _fold.restore_state();
+    _fold.set_pressure(_p);
+    _fold.step();
+    const auto u = _fold.surface_displacement();
+    std::copy(u.begin(), u.end(), Hx.begin());
+  };
+  std::vector<double> x = predict();
+  const auto rep = _loop.step(t, x, H);
+  _channel.advance();
+  _p_nn = std::move(_p_n);
+  _p_n = _p;
+  ++_steps;
+  _t = t;
+
+  // The flow holds the step at the mesh of the last iterate, the fold
+  // H(last iterate): report the fold's state and the flow's
+  Sample out;
+  out.t = t;
+  const auto xs = _fold.moved_surface(_fold.surface_displacement());
+  out.gap = 1e300;
+  for (const auto& p : xs)
+    out.gap = std::min(out.gap, p[1]);
+  const auto Q = _channel.flow_rates();
+  out.Q_inlet = Q[0];
+  out.Q = Q[1];
+  std::array<double, 2> f{0, 0};
+  for (const auto& nf : _channel.fold_forces())
+  {
+    f[0] += nf.f[0];
+    f[1] += nf.f[1];
+  }
+  MPI_Allreduce(MPI_IN_PLACE, f.data(), 2, MPI_DOUBLE, MPI_SUM, _comm);
+  out.drag = f[0];
+  out.lift = f[1];
+  const auto m = _fold.medial_motion(xs);
+  out.h = m[0];
+  out.phi = m[1];
+  out.moment = 0; // no generalised rotation of a continuum
+  out.iterations = rep.iterations;
+  out.converged = _explicit or rep.converged;
+  out.contact_force = _fold.contact_force();
+  out.penetration = std::max(0.0, -out.gap);
+  if (!std::isfinite(out.gap) or !std::isfinite(out.Q)
+      or !std::isfinite(out.lift))
+  {
+    throw std::runtime_error(fmt::format(
+        "elastic FE glottis: non-finite state at t = {:.6g} s", _t));
+  }
+  return out;
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::ElasticFlowGlottis::write_last_good(const std::string& path)
+{
+  _channel.rewind();
+  _fold.restore_state();
+  auto& f = _channel.flow();
+  io::TimeSeriesWriter xdmf(path, {f.velocity(), f.pressure(), f.porous_field(),
+                                   _channel.motion().displacement()});
+  xdmf.write(_t);
+}

@@ -1,0 +1,112 @@
+// Copyright (C) 2026 fsai developers
+//
+// The glottis scene with the elastic fold (ElasticFold) in the FE flow
+// (FlowChannel): `fsai_glottis --flow fe --fold elastic` (issue 7). The
+// closure model of the 2-DOF scene (shared/DESIGN.md §2 "Glottis
+// closure") with a deforming surface instead of a rigid one:
+//   - the fluid boundary is the fold surface, lifted as a whole (tapered
+//     to the wall) by boundary_lift(g, g_min) when the fold's half-gap g
+//     comes below 2 g_min, so the fluid mesh never collapses;
+//   - Ω^P_t: the cells whose current midpoint lies inside the deformed
+//     fold (its moved surface polyline closed along the wall) are porous;
+//   - contact with the axis is the fold's own penalty contact (inside its
+//     Newton solve), as with the Bernoulli flow.
+// The two meshes (the channel at h_gap, the fold at elastic.h_surface)
+// meet on the same profile curve but not at the same nodes: both
+// directions of the transfer go by the arc length along the profile
+// (FoldProfile::arc_length), the fold's surface displacement interpolated
+// linearly between its P2 surface dofs onto the fluid nodes, the fluid
+// pressure (P1, at the fold nodes of the fluid boundary) interpolated onto
+// the fold's surface dofs as the traction −p n. The viscous traction is
+// left out of the fold's load: it is the shear τ ~ μ U/g, of order
+// μ·30 m/s / 0.1 mm ≈ 5 Pa against pressures of 1 kPa (the summary's
+// lift/drag are the full consistent nodal forces, E12).
+//
+// Each time step: the interface variable is the fold's surface
+// displacement (owned dofs of each rank); the map H moves the fluid
+// boundary and mesh to it, marks Ω^P_t, solves one flow step, and solves
+// the fold's Newmark step under the fluid pressure. The coupling is
+// implicit by default: FixedPointCoupling (IQN-ILS) iterates H to the
+// [coupling] tolerance. An explicit coupling (one H per step,
+// --elastic.coupling explicit) diverges: although air is 1/800 of the
+// fold's density, moving the surface moves the air of the whole channel,
+// an added mass far above that of the fold's surface layer (lift grew
+// ×3–4 per step from the first step; a cell inverted at step 13).
+// First guess (coupling.predictor = "load", as for the 2-DOF fold): the
+// fold's step under the surface pressure extrapolated linearly from the
+// last two steps, error O(Δt² p''); "displacement": the Newmark predictor
+// u + Δt v + ½Δt² a.
+#pragma once
+#include "ElasticFold.h"
+#include "FlowChannel.h"
+#include "FlowGlottis.h"
+#include "Sample.h"
+#include <coupling/FixedPointCoupling.h>
+#include <map>
+#include <memory>
+
+namespace fsai::glottis
+{
+class ElasticFlowGlottis
+{
+public:
+  ElasticFlowGlottis(MPI_Comm comm, const FoldProfile& profile,
+                     const ElasticFoldParameters& ep,
+                     const ContactParameters& contact,
+                     const FlowGlottisParameters& p, fluid::FluidParameters fp,
+                     const ale::MeshMotionParameters& ap,
+                     const coupling::CouplingParameters& cp,
+                     const std::string& coupling_csv);
+  /// One coupled time step
+  Sample step();
+  double time() const { return _t; }
+  ElasticFold& fold() { return _fold; }
+  fluid::FluidSolver& flow() { return _channel.flow(); }
+  const ale::MeshMotion& motion() const { return _channel.motion(); }
+  std::int64_t flow_dofs() const { return _channel.flow().dofs(); }
+  std::int64_t cells() const { return _channel.cells(); }
+  std::array<std::int64_t, 2> cells_per_rank() const
+  {
+    return _channel.cells_per_rank();
+  }
+  /// Pressure at the fold's ordered surface points (the fold's load, traction
+  /// −p n) of the last evaluation [Pa]
+  const std::vector<double>& surface_load() const { return _p; }
+  const FlowChannel& channel() const { return _channel; }
+  /// After a failed step: flow and mesh back at the last accepted step,
+  /// whose fields (flow, porous indicator, mesh displacement) are written to
+  /// the XDMF file `path`
+  void write_last_good(const std::string& path);
+
+private:
+  /// Fluid boundary, mesh, mesh velocity and Ω^P_t for the moved fold
+  /// surface x (all ordered points)
+  void move_boundary(double t, const std::vector<std::array<double, 2>>& x);
+  /// The fluid pressure at the fold's ordered surface points
+  std::vector<double> surface_pressure();
+  /// Arc length of a reference point of the fold curve (cached: the same
+  /// fluid nodes are asked at every move)
+  double arc_length(const std::array<double, 2>& X);
+
+  MPI_Comm _comm;
+  const FoldProfile& _profile;
+  FlowGlottisParameters _par;
+  ElasticFold _fold;
+  FlowChannel _channel;
+  bool _explicit;
+  coupling::FixedPointCoupling _loop;
+  std::vector<double> _s; ///< arc length of the fold's ordered points
+  std::map<std::array<double, 2>, double> _arc_cache;
+  /// Gathered fluid pressure nodes: their order by arc length and arc
+  /// lengths (set at the first call)
+  std::vector<std::size_t> _p_order;
+  std::vector<double> _p_s;
+  /// Surface pressure of the last evaluation and of the last two accepted
+  /// steps (the "load" predictor)
+  std::vector<double> _p, _p_n, _p_nn;
+  /// The first guess of the step's surface displacement
+  std::vector<double> predict();
+  int _steps = 0;
+  double _t = 0;
+};
+} // namespace fsai::glottis
