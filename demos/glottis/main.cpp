@@ -18,6 +18,7 @@
 //
 // Sample runs:
 //   ./fsai_glottis --flow bernoulli --p-sub 1200 --duration 0.3
+//   ./fsai_glottis --flow fe --fold elastic --p-sub 400 --duration 0.1
 //
 // Outputs in --output (default results/fsai_glottis): series.csv (t, g, Q,
 // h, φ, forces, contact force, penetration, closed flag, iterations),

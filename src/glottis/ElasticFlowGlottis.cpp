@@ -110,9 +110,8 @@ std::vector<double> fsai::glottis::ElasticFlowGlottis::surface_pressure()
   p.reserve(_s.size());
   for (double s : _s)
     p.push_back(interpolate(_p_s, s,
-                            [&](std::size_t k) -> std::array<double, 1> {
-                              return {all[3 * _p_order[k] + 2]};
-                            })[0]);
+                            [&](std::size_t k) -> std::array<double, 1>
+                            { return {all[3 * _p_order[k] + 2]}; })[0]);
   return p;
 }
 //-----------------------------------------------------------------------------

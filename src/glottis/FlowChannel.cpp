@@ -246,7 +246,8 @@ std::vector<double> fsai::glottis::FlowChannel::fold_pressure() const
   std::vector<double> out;
   out.reserve(3 * _fold_p_dofs.size());
   for (std::size_t i = 0; i < _fold_p_dofs.size(); ++i)
-    out.insert(out.end(), {_fold_p_X[i][0], _fold_p_X[i][1], p[_fold_p_dofs[i]]});
+    out.insert(out.end(),
+               {_fold_p_X[i][0], _fold_p_X[i][1], p[_fold_p_dofs[i]]});
   return out;
 }
 //-----------------------------------------------------------------------------
@@ -278,8 +279,7 @@ std::array<double, 2> fsai::glottis::FlowChannel::flow_rates()
   // the mesh's horizontal motion near the axis.
   const double depth2 = 2 * _profile.geometry().depth;
   const double Q_inlet = -depth2 * _flow->flow_rate(_inlet_facets);
-  return {Q_inlet,
-          Q_inlet - depth2 * _flow->flow_rate(_upstream_fold_facets)};
+  return {Q_inlet, Q_inlet - depth2 * _flow->flow_rate(_upstream_fold_facets)};
 }
 //-----------------------------------------------------------------------------
 void fsai::glottis::FlowChannel::rewind()
