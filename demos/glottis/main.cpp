@@ -136,13 +136,6 @@ struct SceneParameters
     run.validate();
     fsai::require(replay.empty() or flow == "fe", "--replay",
                   "used with --flow fe", replay);
-    fsai::require(fold != "elastic"
-                      or (run.restart.empty() and run.checkpoint_every == 0),
-                  "--fold elastic",
-                  "run without --restart / --checkpoint-every (no "
-                  "checkpoints of the elastic fold yet; series.csv is "
-                  "written every step)",
-                  fold);
     fsai::require(ramp >= 0, "--ramp", ">= 0", ramp);
   }
 };
@@ -203,6 +196,19 @@ int main(int argc, char* argv[])
             and !params.given("coupling.method"))
           setup.coupling.accelerator.method = "aitken";
         sp.validate();
+        // Each flow model has its own ramp option: refuse the other one,
+        // which would be silently ignored
+        fsai::require(!params.given("ramp")
+                          or (sp.fold == "elastic" and sp.flow == "bernoulli"),
+                      "--ramp",
+                      "used with --fold elastic --flow bernoulli (the FE "
+                      "flow's ramp is --fe.ramp; the 2-DOF Bernoulli scene "
+                      "has none)",
+                      sp.ramp);
+        fsai::require(!params.given("fe.ramp") or sp.flow == "fe", "--fe.ramp",
+                      "used with --flow fe (--fold elastic --flow bernoulli: "
+                      "--ramp)",
+                      fe.ramp);
         if (!sp.run.restart.empty())
           sp.output = sp.run.restart; // continue in the run's own folder
         setup.validate(sp.p_sub, sp.dt);
@@ -264,6 +270,12 @@ int main(int argc, char* argv[])
         if (!sp.run.restart.empty())
           ckpt.read();
         const long k0 = ckpt.step();
+        // The XDMF steps after the checkpoint's time are replaced
+        const double t_restart = sp.run.restart.empty()
+                                     ? std::numeric_limits<double>::quiet_NaN()
+                                     : ckpt.meta().at("t").get<double>();
+        const std::size_t rows_kept
+            = sp.run.restart.empty() ? std::string::npos : std::size_t(k0);
         std::unique_ptr<fsai::glottis::BernoulliGlottis> reduced;
         std::unique_ptr<fsai::glottis::FlowGlottis> fem;
         std::unique_ptr<fsai::glottis::ElasticBernoulliGlottis> elastic;
@@ -277,30 +289,20 @@ int main(int argc, char* argv[])
           {
             elastic = std::make_unique<fsai::glottis::ElasticBernoulliGlottis>(
                 rt.comm(), profile, ep, cp, bp, sp.ramp, setup.coupling,
-                sp.output + "/coupling.csv");
+                sp.output + "/coupling.csv", rows_kept);
             ef = &elastic->fold();
           }
           else
           {
             elastic_fe = std::make_unique<fsai::glottis::ElasticFlowGlottis>(
                 rt.comm(), profile, ep, cp, fe, setup.fluid, setup.ale,
-                setup.coupling, sp.output + "/coupling.csv");
+                setup.coupling, sp.output + "/coupling.csv", rows_kept);
             ef = &elastic_fe->fold();
-            const auto per_rank = elastic_fe->cells_per_rank();
-            fsai::log::info("FE flow: {} cells ({}–{} per rank), {} dofs",
-                            elastic_fe->cells(), per_rank[0], per_rank[1],
-                            elastic_fe->flow_dofs());
-            summary.set("flow_dofs", elastic_fe->flow_dofs());
+            const auto& channel = elastic_fe->channel();
+            summary.set("flow_dofs", channel.describe());
             if (sp.write_every > 0)
-            {
-              auto& f = elastic_fe->flow();
               xdmf = std::make_unique<fsai::io::TimeSeriesWriter>(
-                  sp.output + "/flow.xdmf",
-                  std::vector<fsai::io::TimeSeriesWriter::Field>{
-                      f.velocity(), f.pressure(), f.porous_field(),
-                      elastic_fe->motion().displacement()},
-                  std::numeric_limits<double>::quiet_NaN());
-            }
+                  sp.output + "/flow.xdmf", channel.fields(), t_restart);
           }
           std::vector<double> f;
           for (const auto& m : fsai::structure::modal_analysis(ef->solver(), 3))
@@ -316,7 +318,7 @@ int main(int argc, char* argv[])
                 sp.output + "/fold.xdmf",
                 std::vector<fsai::io::TimeSeriesWriter::Field>{
                     ef->solver().displacement(), ef->solver().velocity()},
-                std::numeric_limits<double>::quiet_NaN());
+                t_restart);
         }
         else if (sp.flow == "bernoulli")
           reduced = std::make_unique<fsai::glottis::BernoulliGlottis>(
@@ -325,13 +327,8 @@ int main(int argc, char* argv[])
         {
           fem = std::make_unique<fsai::glottis::FlowGlottis>(
               rt.comm(), profile, vf, cp, fe, setup.fluid, setup.ale,
-              setup.coupling, sp.output + "/coupling.csv",
-              sp.run.restart.empty() ? std::string::npos : std::size_t(k0));
-          const auto per_rank = fem->cells_per_rank();
-          fsai::log::info("FE flow: {} cells ({}–{} per rank), {} dofs",
-                          fem->cells(), per_rank[0], per_rank[1],
-                          fem->flow_dofs());
-          summary.set("flow_dofs", fem->flow_dofs());
+              setup.coupling, sp.output + "/coupling.csv", rows_kept);
+          summary.set("flow_dofs", fem->channel().describe());
           if (!sp.replay.empty())
           {
             replay_mesh_motion(*fem, sp.replay, summary);
@@ -339,17 +336,8 @@ int main(int argc, char* argv[])
             return;
           }
           if (sp.write_every > 0)
-          {
-            auto& f = fem->flow();
             xdmf = std::make_unique<fsai::io::TimeSeriesWriter>(
-                sp.output + "/flow.xdmf",
-                std::vector<fsai::io::TimeSeriesWriter::Field>{
-                    f.velocity(), f.pressure(), f.porous_field(),
-                    fem->motion().displacement()},
-                sp.run.restart.empty()
-                    ? std::numeric_limits<double>::quiet_NaN()
-                    : ckpt.meta().at("t").get<double>());
-          }
+                sp.output + "/flow.xdmf", fem->channel().fields(), t_restart);
         }
         if (sp.fold != "elastic")
         {
@@ -403,6 +391,10 @@ int main(int argc, char* argv[])
                  st.at("fold").get<std::array<std::array<double, 2>, 3>>(),
                  st.at("load").get<std::array<double, 2>>()});
           }
+          else if (elastic)
+            elastic->load(ckpt.fields());
+          else if (elastic_fe)
+            elastic_fe->load(ckpt.fields());
           else
             fem->load(ckpt.fields());
           unconverged = ck.value("coupling_unconverged_steps", 0);
@@ -487,7 +479,9 @@ int main(int argc, char* argv[])
               }
               else
               {
-                const auto fields = fem->save();
+                const auto fields = elastic      ? elastic->save()
+                                    : elastic_fe ? elastic_fe->save()
+                                                 : fem->save();
                 ckpt.write(k, s.t, scalars, &fields);
               }
             }

@@ -503,10 +503,10 @@ int main(int argc, char* argv[])
         }
         fsai::log::info("FE flow: {} cells, {} dofs; acoustics: {} cells, {} "
                         "dofs",
-                        fem->cells(), fem->flow_dofs(),
+                        fem->channel().cells(), fem->channel().flow().dofs(),
                         am.mesh->topology().index_map(2)->size_global(),
                         sound.dofs());
-        summary.set("flow_dofs", fem->flow_dofs());
+        summary.set("flow_dofs", fem->channel().flow().dofs());
         summary.set("acoustic_dofs", sound.dofs());
         summary.set("tract_length_m", tract.length());
         summary.set("vowel", label);
@@ -515,8 +515,9 @@ int main(int argc, char* argv[])
         summary.set("domain_formants_hz", domain_formants);
 
         // Source transfer and taper
-        ac::FlowSource source(rt.comm(), *fem->flow().velocity_space(),
-                              fem->reference_coordinates(),
+        ac::FlowSource source(rt.comm(),
+                              *fem->channel().flow().velocity_space(),
+                              fem->channel().reference_coordinates(),
                               *sound.flow_velocity().function_space());
         {
           auto& chi = sound.taper();
@@ -545,13 +546,8 @@ int main(int argc, char* argv[])
         std::unique_ptr<fsai::io::TimeSeriesWriter> flow_xdmf, sound_xdmf;
         if (vp.write_every > 0)
         {
-          auto& f = fem->flow();
           flow_xdmf = std::make_unique<fsai::io::TimeSeriesWriter>(
-              vp.output + "/flow.xdmf",
-              std::vector<fsai::io::TimeSeriesWriter::Field>{
-                  f.velocity(), f.pressure(), f.porous_field(),
-                  fem->motion().displacement()},
-              t_restart);
+              vp.output + "/flow.xdmf", fem->channel().fields(), t_restart);
           sound_xdmf = std::make_unique<fsai::io::TimeSeriesWriter>(
               vp.output + "/acoustic.xdmf",
               std::vector<fsai::io::TimeSeriesWriter::Field>{sound.pressure()},
@@ -634,7 +630,7 @@ int main(int argc, char* argv[])
               // (the trapezoidal rule's own load): the flow's step-to-step
               // (−1)^n content, which the undamped Newmark scheme would
               // store in unresolved high-frequency modes, is removed
-              source.transfer(*fem->flow().velocity(), *v_new);
+              source.transfer(*fem->channel().flow().velocity(), *v_new);
               auto vs = sound.flow_velocity().x()->mutable_array();
               const auto vn = v_new->x()->array();
               auto vo = v_old->x()->mutable_array();

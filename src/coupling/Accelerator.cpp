@@ -214,6 +214,11 @@ public:
     _omega = std::numeric_limits<double>::quiet_NaN();
   }
   double last_omega() const override { return _omega; }
+  void clear_history() override
+  {
+    _step.clear();
+    _history.clear();
+  }
   // The columns of the last step (moved into the reuse history by the next
   // new_step()) and of the reused steps: "iqn.counts" = columns per step
   // (last step first), "iqn.dr"/"iqn.dx" the columns one after the other

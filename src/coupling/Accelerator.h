@@ -65,6 +65,9 @@ public:
   /// (constant and Aitken: nothing, they restart every step)
   virtual void save(io::RankState&, const std::string&) const {}
   virtual void load(const io::RankState&, const std::string&) {}
+  /// Forget what earlier steps taught (IQN-ILS's reused columns); the
+  /// next step starts as the first one does
+  virtual void clear_history() {}
 };
 
 std::unique_ptr<Accelerator> make_accelerator(MPI_Comm comm,

@@ -86,6 +86,8 @@ public:
   {
     _acc->load(state, prefix);
   }
+  /// Forget the accelerator's history of earlier steps
+  void clear_history() { _acc->clear_history(); }
 
 private:
   MPI_Comm _comm;

@@ -72,11 +72,7 @@ fsai::glottis::Sample fsai::glottis::BernoulliGlottis::step()
   _t += dt;
   s.t = _t;
   s.iterations = it + 1;
-  if (!std::isfinite(s.h) or !std::isfinite(s.phi) or !std::isfinite(s.Q))
-  {
-    throw std::runtime_error(
-        fmt::format("bernoulli glottis: non-finite state at t = {:.6g} s", _t));
-  }
+  require_finite(s, "bernoulli glottis");
   return s;
 }
 

@@ -9,11 +9,28 @@ fsai::glottis::ElasticBernoulliGlottis::ElasticBernoulliGlottis(
     MPI_Comm comm, const FoldProfile& profile, const ElasticFoldParameters& ep,
     const ContactParameters& contact, const BernoulliGlottisParameters& bp,
     double ramp, const coupling::CouplingParameters& cp,
-    const std::string& coupling_csv)
+    const std::string& coupling_csv, std::size_t coupling_rows_kept)
     : _par(bp), _ramp(ramp), _fold(comm, profile, ep, contact, bp.dt),
       _explicit(ep.explicit_coupling(false)),
-      _loop(comm, elastic_coupling_parameters(_explicit, cp), coupling_csv)
+      _loop(comm, elastic_coupling_parameters(_explicit, cp), coupling_csv,
+            coupling_rows_kept)
 {
+}
+//-----------------------------------------------------------------------------
+fsai::io::RankState fsai::glottis::ElasticBernoulliGlottis::save()
+{
+  _loop.clear_history();
+  io::RankState state;
+  _fold.save(state);
+  state["glottis.t"] = {_t};
+  return state;
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::ElasticBernoulliGlottis::load(
+    const std::vector<io::RankState>& ranks)
+{
+  _fold.load(ranks);
+  _t = io::state_entry(ranks.at(0), "glottis.t", 1)[0];
 }
 //-----------------------------------------------------------------------------
 fsai::glottis::SurfacePressure fsai::glottis::ElasticBernoulliGlottis::pressure(
@@ -52,22 +69,7 @@ fsai::glottis::Sample fsai::glottis::ElasticBernoulliGlottis::step()
   const auto f = _fold.pressure_force(xs, sp.p);
   out.drag = f[0];
   out.lift = f[1];
-  const auto m = _fold.medial_motion(xs);
-  out.h = m[0];
-  out.phi = m[1];
-  out.moment = 0; // no generalised rotation of a continuum
-  out.iterations = rep.iterations;
-  // The explicit scheme has no iteration to converge (its residual, the
-  // change of the surface over the step's solve, is in coupling.csv)
-  out.converged = _explicit or rep.converged;
-  out.contact_force = _fold.contact_force();
-  out.penetration = std::max(0.0, -out.gap);
   _t = t;
-  if (!std::isfinite(out.gap) or !std::isfinite(out.Q)
-      or !std::isfinite(out.lift))
-  {
-    throw std::runtime_error(
-        fmt::format("elastic glottis: non-finite state at t = {:.6g} s", _t));
-  }
+  _fold.fill_sample(xs, rep, _explicit, out);
   return out;
 }

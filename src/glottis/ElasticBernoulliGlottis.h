@@ -34,9 +34,19 @@ public:
                           const ContactParameters& contact,
                           const BernoulliGlottisParameters& bp, double ramp,
                           const coupling::CouplingParameters& cp,
-                          const std::string& coupling_csv);
+                          const std::string& coupling_csv,
+                          std::size_t coupling_rows_kept = std::string::npos);
   /// One coupled time step
   Sample step();
+  /// The accepted state (fold, time) for a checkpoint (this rank's part);
+  /// load() continues from the parts of all the checkpoint's ranks
+  /// (coupling_rows_kept = the checkpoint's step keeps coupling.csv's
+  /// rows). The coupling's history of earlier steps (IQN-ILS columns) is
+  /// not kept: its unknowns, the fold surface's owned dofs, depend on the
+  /// partition. Saving forgets it in this run too, so a run and its
+  /// restart continue identically.
+  io::RankState save();
+  void load(const std::vector<io::RankState>& ranks);
   double time() const { return _t; }
   ElasticFold& fold() { return _fold; }
 

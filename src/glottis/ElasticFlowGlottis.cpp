@@ -38,11 +38,13 @@ fsai::glottis::ElasticFlowGlottis::ElasticFlowGlottis(
     MPI_Comm comm, const FoldProfile& profile, const ElasticFoldParameters& ep,
     const ContactParameters& contact, const FlowGlottisParameters& p,
     fluid::FluidParameters fp, const ale::MeshMotionParameters& ap,
-    const coupling::CouplingParameters& cp, const std::string& coupling_csv)
+    const coupling::CouplingParameters& cp, const std::string& coupling_csv,
+    std::size_t coupling_rows_kept)
     : _comm(comm), _profile(profile), _par(p),
       _fold(comm, profile, ep, contact, p.dt),
       _channel(comm, profile, p, fp, ap), _explicit(ep.explicit_coupling(true)),
-      _loop(comm, elastic_coupling_parameters(_explicit, cp), coupling_csv)
+      _loop(comm, elastic_coupling_parameters(_explicit, cp), coupling_csv,
+            coupling_rows_kept)
 {
   for (const auto& X : _fold.surface_reference())
     _s.push_back(_profile.arc_length(X));
@@ -64,10 +66,7 @@ void fsai::glottis::ElasticFlowGlottis::move_boundary(
     double t, const std::vector<std::array<double, 2>>& x)
 {
   const auto& X = _fold.surface_reference();
-  double g = 1e300;
-  for (const auto& p : x)
-    g = std::min(g, p[1]);
-  const double lift = boundary_lift(g, _par.g_min);
+  const double lift = boundary_lift(lowest_point(x), _par.g_min);
   // The fluid boundary: the fold surface's displacement at the same arc
   // length, plus the lift, tapered to the wall like the 2-DOF fold's
   _channel.set_interface(
@@ -164,9 +163,7 @@ fsai::glottis::Sample fsai::glottis::ElasticFlowGlottis::step()
   Sample out;
   out.t = t;
   const auto xs = _fold.moved_surface(_fold.surface_displacement());
-  out.gap = 1e300;
-  for (const auto& p : xs)
-    out.gap = std::min(out.gap, p[1]);
+  out.gap = lowest_point(xs);
   const auto Q = _channel.flow_rates();
   out.Q_inlet = Q[0];
   out.Q = Q[1];
@@ -179,29 +176,57 @@ fsai::glottis::Sample fsai::glottis::ElasticFlowGlottis::step()
   MPI_Allreduce(MPI_IN_PLACE, f.data(), 2, MPI_DOUBLE, MPI_SUM, _comm);
   out.drag = f[0];
   out.lift = f[1];
-  const auto m = _fold.medial_motion(xs);
-  out.h = m[0];
-  out.phi = m[1];
-  out.moment = 0; // no generalised rotation of a continuum
-  out.iterations = rep.iterations;
-  out.converged = _explicit or rep.converged;
-  out.contact_force = _fold.contact_force();
-  out.penetration = std::max(0.0, -out.gap);
-  if (!std::isfinite(out.gap) or !std::isfinite(out.Q)
-      or !std::isfinite(out.lift))
-  {
-    throw std::runtime_error(fmt::format(
-        "elastic FE glottis: non-finite state at t = {:.6g} s", _t));
-  }
+  _fold.fill_sample(xs, rep, _explicit, out);
   return out;
+}
+//-----------------------------------------------------------------------------
+fsai::io::RankState fsai::glottis::ElasticFlowGlottis::save()
+{
+  _loop.clear_history();
+  io::RankState state;
+  _channel.flow().save(state, "flow.");
+  _channel.motion().save(state, "ale.");
+  _fold.save(state);
+  // The surface pressures (the same on every rank): sizes, then values
+  std::vector<double> p{double(_p_n.size()), double(_p_nn.size())};
+  p.insert(p.end(), _p_n.begin(), _p_n.end());
+  p.insert(p.end(), _p_nn.begin(), _p_nn.end());
+  state["glottis.p_history"] = p;
+  state["glottis.t_steps"] = {_t, double(_steps)};
+  return state;
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::ElasticFlowGlottis::load(
+    const std::vector<io::RankState>& ranks)
+{
+  // A mismatch on one rank must not leave the others waiting
+  io::on_every_rank(
+      _comm,
+      [&]
+      {
+        _channel.flow().load(ranks, "flow.");
+        _channel.motion().load(ranks, "ale.");
+        _fold.load(ranks);
+        const auto& r0 = ranks.at(0);
+        const auto& p = io::state_entry(r0, "glottis.p_history");
+        const std::size_t n1 = p.size() >= 2 ? std::size_t(p[0]) : 0,
+                          n2 = p.size() >= 2 ? std::size_t(p[1]) : 0;
+        if (p.size() != 2 + n1 + n2 or (n1 > 0 and n1 != _s.size())
+            or (n2 > 0 and n2 != _s.size()))
+          throw InputError("restart: the checkpoint's fold surface differs");
+        _p_n.assign(p.begin() + 2, p.begin() + 2 + long(n1));
+        _p_nn.assign(p.begin() + 2 + long(n1), p.end());
+        _p = _p_n;
+        const auto& ts = io::state_entry(r0, "glottis.t_steps", 2);
+        _t = ts[0];
+        _steps = int(ts[1]);
+      });
 }
 //-----------------------------------------------------------------------------
 void fsai::glottis::ElasticFlowGlottis::write_last_good(const std::string& path)
 {
   _channel.rewind();
   _fold.restore_state();
-  auto& f = _channel.flow();
-  io::TimeSeriesWriter xdmf(path, {f.velocity(), f.pressure(), f.porous_field(),
-                                   _channel.motion().displacement()});
+  io::TimeSeriesWriter xdmf(path, _channel.fields());
   xdmf.write(_t);
 }

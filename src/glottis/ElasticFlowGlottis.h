@@ -56,22 +56,24 @@ public:
                      const FlowGlottisParameters& p, fluid::FluidParameters fp,
                      const ale::MeshMotionParameters& ap,
                      const coupling::CouplingParameters& cp,
-                     const std::string& coupling_csv);
+                     const std::string& coupling_csv,
+                     std::size_t coupling_rows_kept = std::string::npos);
   /// One coupled time step
   Sample step();
+  /// The accepted state (flow, mesh motion, fold, the surface pressures of
+  /// the load predictor, time) for a checkpoint (this rank's part); load()
+  /// continues from the parts of all the checkpoint's ranks
+  /// (coupling_rows_kept = the checkpoint's step keeps coupling.csv's
+  /// rows). As with the Bernoulli flow, the coupling's history of earlier
+  /// steps is forgotten at a checkpoint, not saved.
+  io::RankState save();
+  void load(const std::vector<io::RankState>& ranks);
   double time() const { return _t; }
   ElasticFold& fold() { return _fold; }
-  fluid::FluidSolver& flow() { return _channel.flow(); }
-  const ale::MeshMotion& motion() const { return _channel.motion(); }
-  std::int64_t flow_dofs() const { return _channel.flow().dofs(); }
-  std::int64_t cells() const { return _channel.cells(); }
-  std::array<std::int64_t, 2> cells_per_rank() const
-  {
-    return _channel.cells_per_rank();
-  }
   /// Pressure at the fold's ordered surface points (the fold's load, traction
   /// −p n) of the last evaluation [Pa]
   const std::vector<double>& surface_load() const { return _p; }
+  /// The flow side: mesh, flow, mesh motion, output fields
   const FlowChannel& channel() const { return _channel; }
   /// After a failed step: flow and mesh back at the last accepted step,
   /// whose fields (flow, porous indicator, mesh displacement) are written to

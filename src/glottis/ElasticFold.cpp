@@ -247,6 +247,21 @@ std::array<double, 2> fsai::glottis::ElasticFold::medial_motion(
   return {h, phi};
 }
 //-----------------------------------------------------------------------------
+void fsai::glottis::ElasticFold::fill_sample(
+    const std::vector<std::array<double, 2>>& x,
+    const coupling::StepReport& rep, bool explicit_scheme, Sample& out) const
+{
+  const auto m = medial_motion(x);
+  out.h = m[0];
+  out.phi = m[1];
+  out.moment = 0;
+  out.iterations = rep.iterations;
+  out.converged = explicit_scheme or rep.converged;
+  out.contact_force = contact_force();
+  out.penetration = std::max(0.0, -out.gap);
+  require_finite(out, "elastic glottis");
+}
+//-----------------------------------------------------------------------------
 std::array<double, 2> fsai::glottis::ElasticFold::pressure_force(
     const std::vector<std::array<double, 2>>& x,
     std::span<const double> p) const

@@ -20,6 +20,7 @@
 #pragma once
 #include "FoldProfile.h"
 #include "HertzContact.h"
+#include "Sample.h"
 #include <coupling/FixedPointCoupling.h>
 #include <memory>
 #include <mesh/MeshData.h>
@@ -109,6 +110,12 @@ public:
   /// Pressure p at the ordered surface points [Pa]: traction −p n
   void set_pressure(std::span<const double> p);
 
+  /// The fold's accepted state into / from a checkpoint (prefix "fold.")
+  void save(io::RankState& state) const { _solver->save(state, "fold."); }
+  void load(const std::vector<io::RankState>& ranks)
+  {
+    _solver->load(ranks, "fold.");
+  }
   void save_state() { _solver->save_state(); }
   void restore_state() { _solver->restore_state(); }
   /// One Newmark step under the set pressure (and contact); Newton its
@@ -120,6 +127,16 @@ public:
   /// its tilt φ (counter-clockwise, > 0 divergent) of a moved surface
   std::array<double, 2>
   medial_motion(const std::vector<std::array<double, 2>>& x) const;
+  /// The fold's fields of a step's sample, for its moved surface x and the
+  /// sample's gap: medial h and φ, moment 0 (a continuum has no
+  /// generalised rotation), the contact force and the penetration; the
+  /// coupling's iterations, and converged (always, for an explicit scheme:
+  /// it has no iteration to converge; its residual, the change of the
+  /// surface over the step's solve, is in coupling.csv). Then
+  /// require_finite.
+  void fill_sample(const std::vector<std::array<double, 2>>& x,
+                   const coupling::StepReport& rep, bool explicit_scheme,
+                   Sample& out) const;
   /// Force of the pressure p on the moved surface x, times L_g [N]
   std::array<double, 2>
   pressure_force(const std::vector<std::array<double, 2>>& x,

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <common/errors.h>
+#include <common/log.h>
 #include <common/mpi_gather.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/utils.h>
@@ -159,6 +160,22 @@ fsai::glottis::FlowChannel::FlowChannel(MPI_Comm comm,
 std::int64_t fsai::glottis::FlowChannel::cells() const
 {
   return _mesh.mesh->topology().index_map(2)->size_global();
+}
+//-----------------------------------------------------------------------------
+std::vector<fsai::io::TimeSeriesWriter::Field>
+fsai::glottis::FlowChannel::fields() const
+{
+  return {_flow->velocity(), _flow->pressure(), _flow->porous_field(),
+          _motion->displacement()};
+}
+//-----------------------------------------------------------------------------
+std::int64_t fsai::glottis::FlowChannel::describe() const
+{
+  const auto per_rank = cells_per_rank();
+  const std::int64_t dofs = _flow->dofs();
+  log::info("FE flow: {} cells ({}–{} per rank), {} dofs", cells(), per_rank[0],
+            per_rank[1], dofs);
+  return dofs;
 }
 //-----------------------------------------------------------------------------
 std::array<std::int64_t, 2> fsai::glottis::FlowChannel::cells_per_rank() const

@@ -20,6 +20,7 @@
 #include <array>
 #include <fluid/FluidSolver.h>
 #include <functional>
+#include <io/TimeSeriesWriter.h>
 #include <memory>
 #include <mesh/MeshData.h>
 #include <mpi.h>
@@ -107,6 +108,12 @@ public:
   std::array<std::int64_t, 2> cells_per_rank() const;
   /// Reference coordinates of the velocity dof blocks (3 per block)
   const std::vector<double>& reference_coordinates() const { return _X_ref; }
+  /// The fields of the flow's XDMF output: velocity, pressure, porous
+  /// indicator, mesh displacement
+  std::vector<io::TimeSeriesWriter::Field> fields() const;
+  /// Logs the mesh size (cells, per rank, flow dofs) and returns the flow
+  /// dofs (collective)
+  std::int64_t describe() const;
 
 private:
   MPI_Comm _comm;

@@ -164,10 +164,8 @@ std::array<double, 2> fsai::glottis::FlowGlottis::boundary_displacement(
 double fsai::glottis::FlowGlottis::boundary_lift(const RigidMotion& m) const
 {
   // By the fold's half-gap g, the lowest point of the rigidly moved surface
-  double g = 1e300;
-  for (const auto& p : moved_surface(_profile, m))
-    g = std::min(g, p[1]);
-  return glottis::boundary_lift(g, _par.g_min);
+  return glottis::boundary_lift(lowest_point(moved_surface(_profile, m)),
+                                _par.g_min);
 }
 
 void fsai::glottis::FlowGlottis::set_boundary(const RigidMotion& m)
@@ -283,10 +281,8 @@ fsai::glottis::Sample fsai::glottis::FlowGlottis::step()
   const auto Q = _channel.flow_rates();
   s.Q_inlet = Q[0];
   s.Q = Q[1];
-  const auto surf = moved_surface(_profile, _fold.motion());
-  s.gap = 1e300;
-  for (auto& p : surf)
-    s.gap = std::min(s.gap, p[1]);
+  s.gap = lowest_point(moved_surface(_profile, _fold.motion()));
+  require_finite(s, "FE glottis");
   return s;
 }
 //-----------------------------------------------------------------------------
@@ -335,47 +331,42 @@ fsai::io::RankState fsai::glottis::FlowGlottis::save() const
 void fsai::glottis::FlowGlottis::load(const std::vector<io::RankState>& ranks)
 {
   // A mismatch on one rank must not leave the others waiting
-  std::string error;
-  try
-  {
-    _channel.flow().load(ranks, "flow.");
-    _channel.motion().load(ranks, "ale.");
-    // The coupling unknowns (h, ℓφ) live on rank 0: its columns come from
-    // the checkpoint's rank 0; the other ranks keep empty columns
-    int rank = 0;
-    MPI_Comm_rank(_comm, &rank);
-    const auto& r0 = ranks.at(0);
-    io::RankState iqn;
-    for (const auto& [name, v] : r0)
-      if (name.rfind("coupling.", 0) == 0)
-        iqn[name]
-            = name.ends_with("counts") or rank == 0 ? v : std::vector<double>();
-    _loop->load(iqn, "coupling.");
-    const auto& f = io::state_entry(r0, "fold.state", 6);
-    _fold.set_state({{{f[0], f[1]}, {f[2], f[3]}, {f[4], f[5]}}});
-    const auto& q = io::state_entry(r0, "glottis.q_history", 4);
-    _q_n = {q[0], q[1]};
-    _q_nn = {q[2], q[3]};
-    const auto& l = io::state_entry(r0, "glottis.load_history", 4);
-    _load_n = {l[0], l[1]};
-    _load_nn = {l[2], l[3]};
-    const auto& ts = io::state_entry(r0, "glottis.t_steps", 2);
-    _t = ts[0];
-    _steps = int(ts[1]);
-  }
-  catch (const std::exception& e)
-  {
-    error = e.what();
-  }
-  io::throw_if_any_rank(_comm, error);
+  io::on_every_rank(
+      _comm,
+      [&]
+      {
+        _channel.flow().load(ranks, "flow.");
+        _channel.motion().load(ranks, "ale.");
+        // The coupling unknowns (h, ℓφ) live on rank 0: its columns come from
+        // the checkpoint's rank 0; the other ranks keep empty columns
+        int rank = 0;
+        MPI_Comm_rank(_comm, &rank);
+        const auto& r0 = ranks.at(0);
+        io::RankState iqn;
+        for (const auto& [name, v] : r0)
+          if (name.rfind("coupling.", 0) == 0)
+            iqn[name] = name.ends_with("counts") or rank == 0
+                            ? v
+                            : std::vector<double>();
+        _loop->load(iqn, "coupling.");
+        const auto& f = io::state_entry(r0, "fold.state", 6);
+        _fold.set_state({{{f[0], f[1]}, {f[2], f[3]}, {f[4], f[5]}}});
+        const auto& q = io::state_entry(r0, "glottis.q_history", 4);
+        _q_n = {q[0], q[1]};
+        _q_nn = {q[2], q[3]};
+        const auto& l = io::state_entry(r0, "glottis.load_history", 4);
+        _load_n = {l[0], l[1]};
+        _load_nn = {l[2], l[3]};
+        const auto& ts = io::state_entry(r0, "glottis.t_steps", 2);
+        _t = ts[0];
+        _steps = int(ts[1]);
+      });
 }
 //-----------------------------------------------------------------------------
 void fsai::glottis::FlowGlottis::write_last_good(const std::string& path)
 {
   _channel.rewind();
   _fold.set_state(_fold.state());
-  auto& f = _channel.flow();
-  io::TimeSeriesWriter xdmf(path, {f.velocity(), f.pressure(), f.porous_field(),
-                                   _channel.motion().displacement()});
+  io::TimeSeriesWriter xdmf(path, _channel.fields());
   xdmf.write(_t);
 }

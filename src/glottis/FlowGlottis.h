@@ -143,21 +143,8 @@ public:
   /// Time of the last accepted step
   double time() const { return _t; }
   const TwoDofFold& fold() const { return _fold; }
-  fluid::FluidSolver& flow() { return _channel.flow(); }
-  const ale::MeshMotion& motion() const { return _channel.motion(); }
-  std::int64_t flow_dofs() const { return _channel.flow().dofs(); }
-  std::int64_t cells() const { return _channel.cells(); }
-  /// Fewest and most cells owned by one rank (collective)
-  std::array<std::int64_t, 2> cells_per_rank() const
-  {
-    return _channel.cells_per_rank();
-  }
-  /// Reference (rest) coordinates of the velocity dof blocks, owned and
-  /// ghost, 3 per block
-  const std::vector<double>& reference_coordinates() const
-  {
-    return _channel.reference_coordinates();
-  }
+  /// The flow side: mesh, flow, mesh motion, output fields
+  const FlowChannel& channel() const { return _channel; }
 
 private:
   /// The coupling map: fold state guess → new fold state

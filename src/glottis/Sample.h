@@ -1,5 +1,8 @@
 // Copyright (C) 2026 fsai developers
 #pragma once
+#include <array>
+#include <string_view>
+#include <vector>
 
 namespace fsai::glottis
 {
@@ -22,4 +25,13 @@ struct Sample
   int iterations = 0;       ///< coupling iterations of the step
   bool converged = true;    ///< coupling reached its tolerance
 };
+
+/// Throws std::runtime_error naming `scene` if the sample's gap, flow rate,
+/// medial motion or lift is not finite (a diverged step must stop the run,
+/// never write NaN rows)
+void require_finite(const Sample& s, std::string_view scene);
+
+/// The half-gap of a moved fold surface: the lowest y of its points (< 0:
+/// across the symmetry axis)
+double lowest_point(const std::vector<std::array<double, 2>>& x);
 } // namespace fsai::glottis

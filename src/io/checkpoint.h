@@ -54,6 +54,24 @@ const std::vector<double>& state_entry(const RankState& state,
 /// lowest such rank's message): restores that fail on one rank only
 void throw_if_any_rank(MPI_Comm comm, const std::string& error);
 
+/// Run `restore` on every rank; if it throws on any rank, every rank throws
+/// (throw_if_any_rank), so that none is left waiting in a later collective
+/// call
+template <typename F>
+void on_every_rank(MPI_Comm comm, F&& restore)
+{
+  std::string error;
+  try
+  {
+    restore();
+  }
+  catch (const std::exception& e)
+  {
+    error = e.what();
+  }
+  throw_if_any_rank(comm, error);
+}
+
 /// How a restart's parameters differ from the checkpointed run's, as JSON
 /// pointers ("/fluid/rho"). Parameters that may differ (output, restart and
 /// checkpoint options, the simulated duration) are left out.

@@ -4,6 +4,7 @@
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/fem/DofMap.h>
 #include <dolfinx/mesh/Topology.h>
+#include <dolfinx/mesh/cell_types.h>
 #include <unordered_map>
 
 std::vector<std::int64_t>
@@ -18,16 +19,37 @@ fsai::io::node_keys(const dolfinx::fem::FunctionSpace& V)
   const auto& xdofs = mesh.geometry().dofmap();
   auto cmap = mesh.topology().index_map(tdim);
   const std::int32_t ncells = cmap->size_local() + cmap->num_ghosts();
+  const auto& layout = dofmap.element_dof_layout();
+  const auto edges
+      = dolfinx::mesh::get_entity_vertices(mesh.topology().cell_type(), 1);
+  const int nv = dolfinx::mesh::num_cell_vertices(mesh.topology().cell_type());
+  // P1: one block per vertex; P2: also one per edge (keyed by its two
+  // vertices, as negative numbers below -1)
+  const bool p2 = layout.num_dofs() == nv + edges.num_nodes();
+  if (layout.num_entity_dofs(0) != 1
+      or (layout.num_dofs() != nv and !(p2 and layout.num_entity_dofs(1) == 1)))
+  {
+    throw std::runtime_error("checkpoint: node keys need a P1 or P2 space");
+  }
   std::vector<std::int64_t> keys(nblocks, -1);
   for (std::int32_t c = 0; c < ncells; ++c)
   {
     auto cd = dofmap.cell_dofs(c);
     auto xd = xdofs.links(c);
-    if (cd.size() != xd.size())
-      throw std::runtime_error("checkpoint: node keys need a P1 space on a "
-                               "P1 mesh");
-    for (std::size_t i = 0; i < cd.size(); ++i)
-      keys[cd[i]] = input[xd[i]];
+    if (int(xd.size()) != nv)
+      throw std::runtime_error("checkpoint: node keys need a P1 mesh");
+    for (int i = 0; i < nv; ++i)
+      keys[cd[layout.entity_dofs(0, i)[0]]] = input[xd[i]];
+    if (!p2)
+      continue;
+    for (std::int32_t e = 0; e < edges.num_nodes(); ++e)
+    {
+      std::int64_t a = input[xd[edges.links(e)[0]]],
+                   b = input[xd[edges.links(e)[1]]];
+      if (a > b)
+        std::swap(a, b);
+      keys[cd[layout.entity_dofs(1, e)[0]]] = -2 - (b * (b + 1) / 2 + a);
+    }
   }
   return keys;
 }

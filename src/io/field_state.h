@@ -18,8 +18,10 @@
 
 namespace fsai::io
 {
-/// Keys of the local dof blocks (owned, then ghost) of a P1 space on a P1
-/// mesh: the input index of the mesh node at each block
+/// Keys of the local dof blocks (owned, then ghost) of a P1 or P2 space on
+/// a P1 mesh: the input index of the mesh node at each vertex block; an
+/// edge block (P2) has −2 − (b(b+1)/2 + a) for the input indices a < b of
+/// its vertices
 std::vector<std::int64_t> node_keys(const dolfinx::fem::FunctionSpace& V);
 
 /// Keys of the local cells (owned, then ghost): their input index

@@ -5,6 +5,7 @@
 #include "../common/errors.h"
 #include "../common/petsc_solver.h"
 #include "../common/timer.h"
+#include "../io/field_state.h"
 #include <cmath>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
@@ -390,6 +391,31 @@ void fsai::structure::ElasticSolver::save_state()
   _saved.push_back(_t);
   _guess.clear();
   _stepped = false;
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::save(io::RankState& state,
+                                          const std::string& prefix) const
+{
+  _J_stale = true;
+  const auto keys = io::node_keys(*_V);
+  const int bs = _V->dofmap()->index_map_bs();
+  const std::int32_t owned = _V->dofmap()->index_map->size_local();
+  for (const auto& [name, f] : {std::pair{"u", _u}, {"v", _v}, {"a", _a}})
+    io::put_blocks(state, prefix + name, f->x()->array(), bs, keys, owned);
+  state[prefix + "t"] = {_t};
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::load(
+    const std::vector<io::RankState>& ranks, const std::string& prefix)
+{
+  const auto keys = io::node_keys(*_V);
+  const int bs = _V->dofmap()->index_map_bs();
+  for (const auto& [name, f] : {std::pair{"u", _u}, {"v", _v}, {"a", _a}})
+    io::get_blocks(ranks, prefix + name, f->x()->mutable_array(), bs, keys);
+  _t = io::state_entry(ranks.at(0), prefix + "t", 1)[0];
+  _saved.clear();
+  _guess.clear();
+  _J_stale = true;
 }
 //-----------------------------------------------------------------------------
 void fsai::structure::ElasticSolver::restore_state()

@@ -14,6 +14,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
+#include <io/checkpoint.h>
 #include <memory>
 #include <span>
 #include <string>
@@ -112,6 +113,13 @@ public:
   /// newton_warm_start the repeated step starts from the last solution)
   void save_state();
   void restore_state();
+  /// The accepted state (u, v, a, t) for a checkpoint (this rank's owned
+  /// blocks, by mesh node and edge); load() fills it from the parts of all
+  /// the checkpoint's ranks (same mesh, any partition). Saving also marks
+  /// the tangent stale, so the next step factorises a fresh one, as a run
+  /// restarted from the checkpoint does: both continue identically
+  void save(io::RankState& state, const std::string& prefix) const;
+  void load(const std::vector<io::RankState>& ranks, const std::string& prefix);
 
   std::shared_ptr<dolfinx::fem::Function<double>> displacement() const
   {
@@ -163,10 +171,10 @@ private:
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _loaded_tags;
   std::shared_ptr<dolfinx::fem::Form<double>> _R, _J, _K, _M, _F_c;
   dolfinx::la::petsc::Matrix _Jmat;
-  bool _J_current = false; ///< J assembled and factorised for the current
-                           ///< material, Δt and load mode
-  bool _J_stale = true;    ///< modified Newton: refactorise before the next
-                           ///< solve
+  bool _J_current = false;      ///< J assembled and factorised for the current
+                                ///< material, Δt and load mode
+  mutable bool _J_stale = true; ///< modified Newton: refactorise before the
+                                ///< next solve
   std::vector<double> _saved;
   std::vector<double> _guess; // warm start of a repeated step (Newton)
   bool _stepped = false;      // a step was taken since save_state()
