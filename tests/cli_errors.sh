@@ -2,15 +2,10 @@
 # Bad command-line input to a demo must end with exit status 2 and one clear
 # line on stderr (no stack trace, no hang), serially and under MPI.
 # usage: cli_errors.sh DEMO_BINARY MPIEXEC
-set -u
 demo=$1
 mpiexec=${2:-mpirun}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
+source "$(dirname "$0")/common.sh"
 pass=0
-fail=0
 
 # expect_error REGEX ARGS... : exit 2, exactly one stderr line matching REGEX
 expect_error() {

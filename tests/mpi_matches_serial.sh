@@ -3,14 +3,10 @@
 # summary.json outside "parameters" (and other than wall times, rank counts
 # and timers) within a relative 1e-6 (absolute 1e-12 for values near 0).
 # usage: mpi_matches_serial.sh MPIEXEC DEMO ARGS...
-set -u
 mpiexec=$1
 demo=$2
 shift 2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
+source "$(dirname "$0")/common.sh"
 "$demo" "$@" --output "$work/serial" >"$work/serial.log" 2>&1 || { echo "FAIL serial run"; tail -5 "$work/serial.log"; exit 1; }
 "$mpiexec" -n 2 "$demo" "$@" --output "$work/mpi2" >"$work/mpi2.log" 2>&1 || { echo "FAIL 2-rank run"; tail -5 "$work/mpi2.log"; exit 1; }
 /usr/bin/python3 - "$work/serial/summary.json" "$work/mpi2/summary.json" <<'PY'

@@ -5,14 +5,9 @@
 # gap, no duplicate row) and the same final state and limit-cycle figures —
 # serially and on 2 ranks; a restart with changed physics is refused.
 # usage: restart_glottis.sh FSAI_GLOTTIS MPIEXEC
-set -u
 demo=$1
 mpiexec=${2:-mpirun}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-fail=0
+source "$(dirname "$0")/common.sh"
 args=(--duration 0.06 --p-sub 800)
 
 for launcher in "" "$mpiexec -n 2"; do

@@ -9,16 +9,9 @@
 # written after the checkpoint replaced, not repeated). A 2-rank checkpoint
 # of the FE scene continues on 1 rank within 1e-6 of the serial run.
 # usage: restart_glottis_elastic.sh FSAI_GLOTTIS MPIEXEC
-set -u
 demo=$1
 mpiexec=${2:-mpirun}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-fail=0
-
-times() { grep -o 'Time Value="[^"]*"' "$1" | sort | uniq -c | awk '{print $1, $3}' | sort -u; }
+source "$(dirname "$0")/common.sh"
 
 # name | steps | kill at | options
 cases=(
@@ -43,7 +36,7 @@ for case in "${cases[@]}"; do
   done
   for x in "$work/full_$name"/*.xdmf; do
     f=$(basename "$x")
-    a=$(times "$x"); b=$(times "$work/cut_$name/$f")
+    a=$(xdmf_times "$x"); b=$(xdmf_times "$work/cut_$name/$f")
     if [ -n "$a" ] && [ "$a" = "$b" ] && ! echo "$b" | awk '{print $1}' | sort -u | sed -n 2p | grep -q .; then
       echo "ok   $name: $f has the same $(echo "$b" | wc -l) times, each once per field"
     else

@@ -9,20 +9,13 @@
 # replaced, not repeated). A checkpoint of 2 ranks continues on 1. A
 # diverging run writes its last good state.
 # usage: restart_glottis_fe.sh FSAI_GLOTTIS MPIEXEC
-set -u
 demo=$1
 mpiexec=${2:-mpirun}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-fail=0
+source "$(dirname "$0")/common.sh"
 # 80 steps of 2e-5 s, coarse mesh; checkpoints at 20, 40, 60, 80; XDMF
 # every 15 steps (so steps 45 written before the kill at 50 are redone)
 args=(--flow fe --duration 0.0016 --fe.h_far 1e-3 --fe.h_gap 0.1e-3
       --checkpoint-every 20 --write_every 15)
-
-times() { grep -o 'Time Value="[^"]*"' "$1" | sort | uniq -c | awk '{print $1, $3}' | sort -u; }
 
 for launcher in "" "$mpiexec -n 2"; do
   tag=${launcher:+mpi2}
@@ -94,7 +87,7 @@ print(f"     mpi2: series, coupling log and final state within {worst:.1e} of ea
 sys.exit(0 if worst < 1e-9 else 1)
 PY
   fi
-  a=$(times "$work/full_$tag/flow.xdmf"); b=$(times "$work/cut_$tag/flow.xdmf")
+  a=$(xdmf_times "$work/full_$tag/flow.xdmf"); b=$(xdmf_times "$work/cut_$tag/flow.xdmf")
   if [ "$a" = "$b" ] && ! echo "$b" | grep -qv '^4 '; then
     echo "ok   $tag: flow.xdmf has the same $(echo "$b" | wc -l) times, each once per field"
   else

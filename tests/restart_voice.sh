@@ -6,14 +6,9 @@
 # quantity's largest value (two uninterrupted 2-rank runs differ in the
 # last digits), and acoustic.xdmf must hold each output time once.
 # usage: restart_voice.sh FSAI_DEMO MPIEXEC
-set -u
 demo=$1
 mpiexec=${2:-mpirun}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-fail=0
+source "$(dirname "$0")/common.sh"
 # --quick: 800 steps of 5e-5 s; checkpoints every 200, XDMF every 150
 args=(--quick --checkpoint-every 200 --write_every 150)
 $mpiexec -n 2 "$demo" "${args[@]}" --output "$work/full" >/dev/null 2>&1 || { echo "FAIL full run"; fail=1; }

@@ -29,8 +29,13 @@ fsai::io::RankState fsai::glottis::ElasticBernoulliGlottis::save()
 void fsai::glottis::ElasticBernoulliGlottis::load(
     const std::vector<io::RankState>& ranks)
 {
-  _fold.load(ranks);
-  _t = io::state_entry(ranks.at(0), "glottis.t", 1)[0];
+  // A mismatch on one rank must not leave the others waiting
+  io::on_every_rank(_fold.comm(),
+                    [&]
+                    {
+                      _fold.load(ranks);
+                      _t = io::state_entry(ranks.at(0), "glottis.t", 1)[0];
+                    });
 }
 //-----------------------------------------------------------------------------
 fsai::glottis::SurfacePressure fsai::glottis::ElasticBernoulliGlottis::pressure(
@@ -70,6 +75,6 @@ fsai::glottis::Sample fsai::glottis::ElasticBernoulliGlottis::step()
   out.drag = f[0];
   out.lift = f[1];
   _t = t;
-  _fold.fill_sample(xs, rep, _explicit, out);
+  _fold.fill_sample(xs, rep, _explicit, "elastic glottis", out);
   return out;
 }

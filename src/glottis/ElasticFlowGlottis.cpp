@@ -176,7 +176,7 @@ fsai::glottis::Sample fsai::glottis::ElasticFlowGlottis::step()
   MPI_Allreduce(MPI_IN_PLACE, f.data(), 2, MPI_DOUBLE, MPI_SUM, _comm);
   out.drag = f[0];
   out.lift = f[1];
-  _fold.fill_sample(xs, rep, _explicit, out);
+  _fold.fill_sample(xs, rep, _explicit, "elastic FE glottis", out);
   return out;
 }
 //-----------------------------------------------------------------------------
@@ -184,8 +184,7 @@ fsai::io::RankState fsai::glottis::ElasticFlowGlottis::save()
 {
   _loop.clear_history();
   io::RankState state;
-  _channel.flow().save(state, "flow.");
-  _channel.motion().save(state, "ale.");
+  _channel.save(state);
   _fold.save(state);
   // The surface pressures (the same on every rank): sizes, then values
   std::vector<double> p{double(_p_n.size()), double(_p_nn.size())};
@@ -204,8 +203,7 @@ void fsai::glottis::ElasticFlowGlottis::load(
       _comm,
       [&]
       {
-        _channel.flow().load(ranks, "flow.");
-        _channel.motion().load(ranks, "ale.");
+        _channel.load(ranks);
         _fold.load(ranks);
         const auto& r0 = ranks.at(0);
         const auto& p = io::state_entry(r0, "glottis.p_history");

@@ -249,7 +249,8 @@ std::array<double, 2> fsai::glottis::ElasticFold::medial_motion(
 //-----------------------------------------------------------------------------
 void fsai::glottis::ElasticFold::fill_sample(
     const std::vector<std::array<double, 2>>& x,
-    const coupling::StepReport& rep, bool explicit_scheme, Sample& out) const
+    const coupling::StepReport& rep, bool explicit_scheme,
+    std::string_view scene, Sample& out) const
 {
   const auto m = medial_motion(x);
   out.h = m[0];
@@ -259,7 +260,7 @@ void fsai::glottis::ElasticFold::fill_sample(
   out.converged = explicit_scheme or rep.converged;
   out.contact_force = contact_force();
   out.penetration = std::max(0.0, -out.gap);
-  require_finite(out, "elastic glottis");
+  require_finite(out, scene);
 }
 //-----------------------------------------------------------------------------
 std::array<double, 2> fsai::glottis::ElasticFold::pressure_force(

@@ -133,16 +133,17 @@ public:
   /// coupling's iterations, and converged (always, for an explicit scheme:
   /// it has no iteration to converge; its residual, the change of the
   /// surface over the step's solve, is in coupling.csv). Then
-  /// require_finite.
+  /// require_finite, whose error names the scene.
   void fill_sample(const std::vector<std::array<double, 2>>& x,
                    const coupling::StepReport& rep, bool explicit_scheme,
-                   Sample& out) const;
+                   std::string_view scene, Sample& out) const;
   /// Force of the pressure p on the moved surface x, times L_g [N]
   std::array<double, 2>
   pressure_force(const std::vector<std::array<double, 2>>& x,
                  std::span<const double> p) const;
 
   structure::ElasticSolver& solver() { return *_solver; }
+  MPI_Comm comm() const { return _comm; }
   const FoldProfile& profile() const { return _profile; }
   const mesh::MeshData& mesh() const { return _mesh; }
   std::int64_t dofs() const;

@@ -299,6 +299,18 @@ std::array<double, 2> fsai::glottis::FlowChannel::flow_rates()
   return {Q_inlet, Q_inlet - depth2 * _flow->flow_rate(_upstream_fold_facets)};
 }
 //-----------------------------------------------------------------------------
+void fsai::glottis::FlowChannel::save(io::RankState& state) const
+{
+  _flow->save(state, "flow.");
+  _motion->save(state, "ale.");
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::FlowChannel::load(const std::vector<io::RankState>& ranks)
+{
+  _flow->load(ranks, "flow.");
+  _motion->load(ranks, "ale.");
+}
+//-----------------------------------------------------------------------------
 void fsai::glottis::FlowChannel::rewind()
 {
   _flow->restore_state();

@@ -97,6 +97,12 @@ public:
   void advance() { _motion->advance(); }
   /// Flow and mesh back at the last accepted step
   void rewind();
+  /// Adds the accepted flow ("flow.") and mesh motion ("ale.") of this rank
+  /// to a checkpoint's state
+  void save(io::RankState& state) const;
+  /// Restores what save() wrote, from the states of all ranks of the
+  /// checkpoint (throws on a mismatch; callers wrap it in io::on_every_rank)
+  void load(const std::vector<io::RankState>& ranks);
 
   fluid::FluidSolver& flow() { return *_flow; }
   const fluid::FluidSolver& flow() const { return *_flow; }

@@ -316,8 +316,7 @@ std::array<double, 2> fsai::glottis::FlowGlottis::predict()
 fsai::io::RankState fsai::glottis::FlowGlottis::save() const
 {
   io::RankState state;
-  _channel.flow().save(state, "flow.");
-  _channel.motion().save(state, "ale.");
+  _channel.save(state);
   _loop->save(state, "coupling.");
   const auto f = _fold.state();
   state["fold.state"] = {f[0][0], f[0][1], f[1][0], f[1][1], f[2][0], f[2][1]};
@@ -335,8 +334,7 @@ void fsai::glottis::FlowGlottis::load(const std::vector<io::RankState>& ranks)
       _comm,
       [&]
       {
-        _channel.flow().load(ranks, "flow.");
-        _channel.motion().load(ranks, "ale.");
+        _channel.load(ranks);
         // The coupling unknowns (h, ℓφ) live on rank 0: its columns come from
         // the checkpoint's rank 0; the other ranks keep empty columns
         int rank = 0;
