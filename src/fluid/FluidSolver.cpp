@@ -56,6 +56,10 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
   p.add("fluid.pc_lag", pc_lag,
         "iterative solver: rebuild the preconditioner every pc_lag-th solve "
         "(1: every solve; the solve still meets ksp_rtol)");
+  p.add_choice("fluid.assembly", assembly, {"coo", "dolfinx"},
+               "matrix insertion: PETSc COO on a recorded pattern, or "
+               "DOLFINx's per-cell MatSetValuesLocal (the same matrix to "
+               "rounding)");
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidParameters::validate() const
@@ -188,6 +192,8 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   _F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       fluid_forms::F_res(tdim, 1), {_W}, coeffs, c, sd));
   _A = la::petsc::Matrix(fem::petsc::create_matrix(*_a), false);
+  if (p.assembly == "coo")
+    _coo = std::make_unique<common::CooMatrixAssembler>(_A.mat(), *_a, _bcs);
 
   // Defaults set on this KSP, then the options database (prefix fluid_)
   // overrides them: global option defaults would leak from one solver
@@ -297,26 +303,40 @@ int fsai::fluid::FluidSolver::solve()
 {
   {
     common::ScopedTimer t("fluid: assemble");
-    MatZeroEntries(_A.mat());
-    fem::assemble_matrix(la::petsc::Matrix::set_block_fn(_A.mat(), ADD_VALUES),
-                         *_a, _bcs);
-    MatAssemblyBegin(_A.mat(), MAT_FLUSH_ASSEMBLY);
-    MatAssemblyEnd(_A.mat(), MAT_FLUSH_ASSEMBLY);
-    fem::set_diagonal<double>(
-        la::petsc::Matrix::set_fn(_A.mat(), INSERT_VALUES), *_W, _bcs);
-    MatAssemblyBegin(_A.mat(), MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(_A.mat(), MAT_FINAL_ASSEMBLY);
+    if (_coo)
+      _coo->assemble(_A.mat(), *_a, _bcs);
+    else
+    {
+      MatZeroEntries(_A.mat());
+      fem::assemble_matrix(
+          la::petsc::Matrix::set_block_fn(_A.mat(), ADD_VALUES), *_a, _bcs);
+      MatAssemblyBegin(_A.mat(), MAT_FLUSH_ASSEMBLY);
+      MatAssemblyEnd(_A.mat(), MAT_FLUSH_ASSEMBLY);
+      fem::set_diagonal<double>(
+          la::petsc::Matrix::set_fn(_A.mat(), INSERT_VALUES), *_W, _bcs);
+      MatAssemblyBegin(_A.mat(), MAT_FINAL_ASSEMBLY);
+      MatAssemblyEnd(_A.mat(), MAT_FINAL_ASSEMBLY);
+    }
   }
   la::Vector<double> b(_W->dofmap()->index_map, 1);
   {
     common::ScopedTimer t("fluid: assemble");
     b.set(0.0);
     fem::assemble_vector(b.mutable_array(), *_L);
-    fem::apply_lifting<double>(
-        b.mutable_array(),
-        std::vector<std::shared_ptr<const fem::Form<double>>>{_a},
-        std::vector<decltype(_bcs)>{_bcs},
-        std::vector<std::span<const double>>{}, 1.0);
+    if (_coo)
+    {
+      // −A_{:,D} g, computed with the matrix
+      auto bb = b.mutable_array();
+      auto lift = _coo->lifting();
+      for (std::size_t i = 0; i < lift.size(); ++i)
+        bb[i] += lift[i];
+    }
+    else
+      fem::apply_lifting<double>(
+          b.mutable_array(),
+          std::vector<std::shared_ptr<const fem::Form<double>>>{_a},
+          std::vector<decltype(_bcs)>{_bcs},
+          std::vector<std::span<const double>>{}, 1.0);
     b.scatter_rev(std::plus<double>());
     fem::set_bc<double>(b.mutable_array(), _bcs);
   }
