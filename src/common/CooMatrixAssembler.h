@@ -34,6 +34,10 @@ namespace fsai::common
 /// fem::assemble_matrix + set_diagonal and apply_lifting, summed in
 /// another order (equal to rounding).
 ///
+/// Cost in memory: the values and PETSc's map of them, about 20 bytes per
+/// element-matrix entry (81 per P1/P1 triangle, 256 per tetrahedron):
+/// +31 MB peak RSS on the FE glottis mesh (19855 triangles, serial).
+///
 /// The form's integration domains, the dofmap and the set of constrained
 /// dofs must not change after construction (coefficients, constants, mesh
 /// coordinates and boundary values may): assemble() throws if the number
