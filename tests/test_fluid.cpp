@@ -44,6 +44,31 @@ Channel channel(double L, double H, std::size_t nx, std::size_t ny)
   return c;
 }
 
+/// Parabolic inflow u = 4 Umax y (H − y) / H², v = 0 (2D)
+void set_parabolic_inflow(fsai::fluid::FluidSolver& flow, double Umax, double H)
+{
+  flow.inlet_velocity().interpolate(
+      [&](auto& x) -> xt::xarray<double>
+      {
+        xt::xarray<double> v = xt::zeros<double>({std::size_t(2), x.shape(1)});
+        for (std::size_t i = 0; i < x.shape(1); ++i)
+          v(0, i) = 4 * Umax * x(1, i) * (H - x(1, i)) / (H * H);
+        return v;
+      });
+}
+
+/// {max |a − b|, max |a|} over all ranks
+std::array<double, 2> max_difference(const std::vector<double>& a,
+                                     const std::vector<double>& b)
+{
+  std::array<double, 2> l{0, 0}, g;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    l[0] = std::max(l[0], std::abs(a[i] - b[i])),
+    l[1] = std::max(l[1], std::abs(a[i]));
+  MPI_Allreduce(l.data(), g.data(), 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return g;
+}
+
 /// Steady flow rate through the outlet
 double outlet_flow(const Channel& c, fsai::fluid::FluidParameters p,
                    bool dirichlet, double Umax, double H)
@@ -53,14 +78,7 @@ double outlet_flow(const Channel& c, fsai::fluid::FluidParameters p,
   b.outlet = c.outlet;
   b.walls = c.walls;
   fsai::fluid::FluidSolver flow(c.mesh, b, p, 1.0);
-  flow.inlet_velocity().interpolate(
-      [&](auto& x) -> xt::xarray<double>
-      {
-        xt::xarray<double> v = xt::zeros<double>({std::size_t(2), x.shape(1)});
-        for (std::size_t i = 0; i < x.shape(1); ++i)
-          v(0, i) = 4 * Umax * x(1, i) * (H - x(1, i)) / (H * H);
-        return v;
-      });
+  set_parabolic_inflow(flow, Umax, H);
   flow.solve_steady(100);
   return flow.flow_rate(c.outlet);
 }
@@ -300,12 +318,7 @@ TEST_CASE("3D channel: the iterative fieldsplit solver matches MUMPS",
                     "rate {:.8e}",
                     solver, its, q.back());
   }
-  double d = 0, m = 0;
-  for (std::size_t i = 0; i < v[0].size(); ++i)
-    d = std::max(d, std::abs(v[0][i] - v[1][i])),
-    m = std::max(m, std::abs(v[0][i]));
-  double g[2], l[2] = {d, m};
-  MPI_Allreduce(l, g, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  const auto g = max_difference(v[0], v[1]);
   fsai::log::info("Fluid 3D channel: max |v_direct - v_iterative| / max |v| = "
                   "{:.2e}",
                   g[0] / g[1]);
@@ -335,15 +348,7 @@ TEST_CASE("2D channel start-up: the iterative solvers (AMG and ILU velocity "
     // built at the first step (flow at rest) and used for all five
     p.pc_lag = pc == "ilu-lag" ? 5 : 1;
     fsai::fluid::FluidSolver flow(c.mesh, b, p, 0.01);
-    flow.inlet_velocity().interpolate(
-        [&](auto& x) -> xt::xarray<double>
-        {
-          xt::xarray<double> u
-              = xt::zeros<double>({std::size_t(2), x.shape(1)});
-          for (std::size_t i = 0; i < x.shape(1); ++i)
-            u(0, i) = 6 * x(1, i) * (H - x(1, i)) / (H * H);
-          return u;
-        });
+    set_parabolic_inflow(flow, 1.5, H);
     for (int n = 0; n < 5; ++n)
       flow.step();
     v.emplace_back(flow.velocity()->x()->array().begin(),
@@ -351,12 +356,7 @@ TEST_CASE("2D channel start-up: the iterative solvers (AMG and ILU velocity "
   }
   for (int k : {1, 2, 3})
   {
-    double d = 0, m = 0;
-    for (std::size_t i = 0; i < v[0].size(); ++i)
-      d = std::max(d, std::abs(v[0][i] - v[k][i])),
-      m = std::max(m, std::abs(v[0][i]));
-    double g[2], l[2] = {d, m};
-    MPI_Allreduce(l, g, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    const auto g = max_difference(v[0], v[k]);
     fsai::log::info("Fluid 2D start-up, 5 BDF steps: max |v_direct - v_{}| / "
                     "max |v| = {:.2e}",
                     std::array{"", "amg", "ilu", "ilu-lag"}[k], g[0] / g[1]);
@@ -386,15 +386,7 @@ TEST_CASE("Where P1/P1 fails: without PSPG the DFG 2D-1 pressure oscillates "
     p.pspg = pspg;
     fsai::fluid::FluidSolver flow(m.mesh, b, p, 1.0);
     const double H = 0.41, Um = 0.3;
-    flow.inlet_velocity().interpolate(
-        [&](auto& x) -> xt::xarray<double>
-        {
-          xt::xarray<double> u
-              = xt::zeros<double>({std::size_t(2), x.shape(1)});
-          for (std::size_t i = 0; i < x.shape(1); ++i)
-            u(0, i) = 4 * Um * x(1, i) * (H - x(1, i)) / (H * H);
-          return u;
-        });
+    set_parabolic_inflow(flow, Um, H);
     flow.solve_steady(100);
     auto pr = taps.values(*flow.pressure());
     out[pspg] = {flow.pressure_gradient_norm(), pr[0] - pr[1]};
@@ -430,15 +422,7 @@ TEST_CASE("COO matrix assembly gives DOLFINx's matrix and lifting: the same "
     p.mu = 1e-3;
     p.assembly = assembly;
     fsai::fluid::FluidSolver flow(c.mesh, b, p, 0.05);
-    flow.inlet_velocity().interpolate(
-        [&](auto& x) -> xt::xarray<double>
-        {
-          xt::xarray<double> v
-              = xt::zeros<double>({std::size_t(2), x.shape(1)});
-          for (std::size_t i = 0; i < x.shape(1); ++i)
-            v(0, i) = 4 * Umax * x(1, i) * (H - x(1, i)) / (H * H);
-          return v;
-        });
+    set_parabolic_inflow(flow, Umax, H);
     for (int k = 0; k < 10; ++k)
       flow.step();
     std::vector<double> s(flow.velocity()->x()->array().begin(),
@@ -447,12 +431,7 @@ TEST_CASE("COO matrix assembly gives DOLFINx's matrix and lifting: the same "
              flow.pressure()->x()->array().end());
     up.push_back(s);
   }
-  double d = 0, m = 0;
-  for (std::size_t i = 0; i < up[0].size(); ++i)
-    d = std::max(d, std::abs(up[0][i] - up[1][i])),
-    m = std::max(m, std::abs(up[0][i]));
-  double g[2], l[2] = {d, m};
-  MPI_Allreduce(l, g, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  const auto g = max_difference(up[0], up[1]);
   fsai::log::info("COO vs DOLFINx assembly, 10 steps: max difference of the "
                   "velocity and pressure dofs {:.2e} of their largest {:.3e}",
                   g[0], g[1]);

@@ -1,23 +1,23 @@
 // Copyright (C) 2026 fsai developers
 #include "CooMatrixAssembler.h"
 #include <dolfinx/fem/assembler.h>
-#include <petscsys.h>
+#include <dolfinx/la/petsc.h>
 #include <span>
 #include <stdexcept>
-#include <string>
 
 namespace
 {
-void check(PetscErrorCode ierr, const char* what)
+/// DOLFINx's PETSc error report (logs and throws)
+void check(PetscErrorCode ierr, const char* function)
 {
   if (ierr != 0)
-    throw std::runtime_error(std::string("PETSc error in ") + what + " ("
-                             + std::to_string(int(ierr)) + ")");
+    dolfinx::la::petsc::error(ierr, __FILE__, function);
 }
 } // namespace
 
 fsai::common::CooMatrixAssembler::CooMatrixAssembler(
     Mat A, const dolfinx::fem::Form<double>& a, const BCs& bcs)
+    : _bcs(bcs)
 {
   const auto& V0 = *a.function_spaces().at(0);
   const auto& V1 = *a.function_spaces().at(1);
@@ -71,9 +71,9 @@ fsai::common::CooMatrixAssembler::CooMatrixAssembler(
 }
 //-----------------------------------------------------------------------------
 void fsai::common::CooMatrixAssembler::assemble(
-    Mat A, const dolfinx::fem::Form<double>& a, const BCs& bcs)
+    Mat A, const dolfinx::fem::Form<double>& a)
 {
-  for (const auto& bc : bcs)
+  for (const auto& bc : _bcs)
     bc->set(_g);
   std::fill(_lift.begin(), _lift.end(), 0.0);
   std::size_t k = 0;

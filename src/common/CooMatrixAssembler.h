@@ -54,17 +54,15 @@ public:
                      const BCs& bcs);
   /// A = assembled a, with the constrained rows and columns zeroed and 1
   /// on their diagonal (final assembly included); lifting() = −A_{:,D} g
-  /// for the current boundary values g of `bcs` (the conditions given to
-  /// the constructor)
-  void assemble(Mat A, const dolfinx::fem::Form<double>& a, const BCs& bcs);
+  /// for the current boundary values g of the constructor's conditions
+  void assemble(Mat A, const dolfinx::fem::Form<double>& a);
   /// The lifting of the last assemble(), by local dof of the test space
   /// (owned and ghost: add it to the right-hand side before its reverse
   /// scatter, as apply_lifting does)
   std::span<const double> lifting() const { return _lift; }
-  /// Number of COO entries (element entries and Dirichlet diagonal)
-  std::size_t entries() const { return _values.size(); }
 
 private:
+  BCs _bcs;
   int _bs0 = 1, _bs1 = 1;
   std::size_t _element_entries = 0; ///< entries from the element matrices
   std::vector<double> _values;      ///< in the recorded order

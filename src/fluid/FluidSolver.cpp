@@ -304,7 +304,7 @@ int fsai::fluid::FluidSolver::solve()
   {
     common::ScopedTimer t("fluid: assemble");
     if (_coo)
-      _coo->assemble(_A.mat(), *_a, _bcs);
+      _coo->assemble(_A.mat(), *_a);
     else
     {
       MatZeroEntries(_A.mat());
