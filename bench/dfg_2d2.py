@@ -10,7 +10,9 @@ usage: bench/dfg_2d2.py [BUILD_DIR] [--ranks 2] [--levels 0 1 2]
 writes bench/results/NAME.csv and .png
 solvers: direct = MUMPS LU; iterative-amg = FGMRES + Schur fieldsplit,
 BoomerAMG on both blocks; iterative-ilu = the same with block-Jacobi ILU(0)
-on the velocity block
+on the velocity block; direct-q2 = MUMPS LU with --fluid.quadrature_degree 2
+(stop 31: `--solvers direct direct-q2 --levels 1 --dts 0.005 --name
+dfg_2d2_quadrature`)
 """
 import argparse
 import csv
@@ -33,7 +35,9 @@ ap.add_argument("--t_end", type=float, default=8.0)
 ap.add_argument("--t_stats", type=float, default=6.0)
 solvers = {"direct": [],
            "iterative-amg": ["--fluid.solver", "iterative"],
-           "iterative-ilu": ["--fluid.solver", "iterative", "--fluid.velocity_pc", "ilu"]}
+           "iterative-ilu": ["--fluid.solver", "iterative", "--fluid.velocity_pc", "ilu"],
+           # MUMPS LU with the flow's cell integrals at quadrature degree 2
+           "direct-q2": ["--fluid.quadrature_degree", "2"]}
 ap.add_argument("--solvers", nargs="+", choices=list(solvers), default=["iterative-ilu"])
 ap.add_argument("--name", default="dfg_2d2")
 args = ap.parse_args()

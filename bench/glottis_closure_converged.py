@@ -74,6 +74,15 @@ CASES = {
     "h025_dt1_z02_c75": (0.1, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
                                 "--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
                                 "--checkpoint-every", "2000"]),
+    # stop 31: SUPG/PSPG τ without its transient term (2/Δt)² (Hsu et al.
+    # 2010; it halved the held glottis's Δt dependence): the first 0.06 s.
+    # It failed: coupling stalls near closure, a cell inverted at 26 ms
+    "dt1_z02_c75_taus": (0.06, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+                                "--fluid.tau_dt=false", "--checkpoint-every", "2000"]),
+    # stop 31: the cell integrals at quadrature degree 2 (3 points per
+    # triangle instead of 6; the Galerkin terms still exact)
+    "dt1_z02_c75_q2": (0.1, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+                             "--fluid.quadrature_degree", "2"]),
 }
 FOLDER = {"default": "run_glottis_conv_fine_01_load",
           "h025_dt1_z02_c75": "run_glottis_h025_dt1_z02_c75"}

@@ -73,11 +73,16 @@ inv_eps = ufl.Constant(mesh)   # 1/ε of the inlet penalty [m/s]
 p_in = ufl.Constant(mesh)
 p_out = ufl.Constant(mesh)
 
-# Quadrature degree 4 for the cell integrals: the Galerkin terms are at
-# most quadratic on P1, the stabilisation terms are quadratic times τ.
-# UFL's own estimate for the non-polynomial τ_m (a −1/2 power) was degree 10
-# (33 points per triangle), which made assembly 5x dearer for no accuracy.
-dx = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": 4})
+# Quadrature degree of the cell integrals, compiled twice (the solver picks
+# one, --fluid.quadrature_degree): 4 (6 points per triangle, 14 per
+# tetrahedron), the default, or 2 (3 and 4 points). The Galerkin terms are
+# at most quadratic on P1, so both integrate them exactly; they differ only
+# in the stabilisation terms, quadratic times the non-polynomial τ, which
+# degree 2 samples at fewer points. UFL's own estimate for τ_m (a −1/2
+# power) was degree 10 (33 points per triangle), which made assembly 5x
+# dearer for no accuracy.
+dx4 = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": 4})
+dx2 = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": 2})
 
 n = FacetNormal(mesh)
 h = CellDiameter(mesh)
@@ -92,8 +97,9 @@ tau_m = 1 / sqrt((2 * inv_dt) ** 2 + (2 * bnorm / h) ** 2 + (4 * nu / h**2) ** 2
 tau_c = 0.5 * h * bnorm
 
 
-def residual(v, p):
-    """Full weak residual F((v, p); (φ, q)); linear in (v, p) for fixed b"""
+def residual(v, p, dx):
+    """Full weak residual F((v, p); (φ, q)); linear in (v, p) for fixed b;
+    dx: the cell measure (its quadrature degree)"""
     R_m = (rho * (a0 * v + a1 * v_n + a2 * v_nn + grad(v) * b - f) + grad(p)
            + sigma_p * chi * (v - w))
     F = (rho * inner(a0 * v + a1 * v_n + a2 * v_nn + grad(v) * b, phi) * dx
@@ -111,17 +117,20 @@ def residual(v, p):
 
 
 (v_tr, p_tr) = ufl.TrialFunctions(W)
-a, L = ufl.system(residual(v_tr, p_tr))
+a, L = ufl.system(residual(v_tr, p_tr, dx4))
+a_q2, L_q2 = ufl.system(residual(v_tr, p_tr, dx2))
 
 # Residual of a given solution: forces on a boundary are its entries at
-# that boundary's velocity dofs (E12, consistent traction)
+# that boundary's velocity dofs (E12, consistent traction); with the same
+# quadrature as the system solved, or the traction is not consistent
 (v_h, p_h) = split(up)
-F_res = residual(v_h, p_h)
+F_res = residual(v_h, p_h, dx4)
+F_res_q2 = residual(v_h, p_h, dx2)
 
 # Flow rate through the facets bound to ds(1)
 flux = dot(v_h, n) * ds(1)
 
 # ∫|∇p|²: grows with spurious pressure modes (P1/P1 without PSPG)
-grad_p_sq = inner(grad(p_h), grad(p_h)) * dx
+grad_p_sq = inner(grad(p_h), grad(p_h)) * dx4
 
-forms = [a, L, F_res, flux, grad_p_sq]
+forms = [a, L, F_res, a_q2, L_q2, F_res_q2, flux, grad_p_sq]

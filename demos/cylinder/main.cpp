@@ -104,12 +104,8 @@ int main(int argc, char* argv[])
         // 1. Mesh and boundaries
         const double h = 0.04 / std::pow(2.0, cp.level);
         fsai::mesh::MeshData m = fsai::mesh::dfg_channel(rt.comm(), h, h / 8);
-        fsai::fluid::FluidBoundaries b;
-        b.inlet_dirichlet = m.facet_tags->find(m.facet_tag("inlet"));
-        b.outlet = m.facet_tags->find(m.facet_tag("outlet"));
-        b.walls = m.facet_tags->find(m.facet_tag("walls"));
-        auto cyl = m.facet_tags->find(m.facet_tag("cylinder"));
-        b.walls.insert(b.walls.end(), cyl.begin(), cyl.end());
+        const auto b = fsai::fluid::dfg_boundaries(m);
+        const auto cyl = m.facet_tags->find(m.facet_tag("cylinder"));
         const bool steady = cp.dfg_case == "2D-1";
         fsai::fluid::FluidSolver flow(m.mesh, b, fp, cp.dt);
         fsai::log::info("DFG {}: h = {:.4f} m, {} dofs", cp.dfg_case, h,

@@ -122,3 +122,19 @@ void fsai::common::CooMatrixAssembler::assemble(
   check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
   check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
 }
+//-----------------------------------------------------------------------------
+void fsai::common::assemble_matrix_per_cell(Mat A,
+                                            const dolfinx::fem::Form<double>& a,
+                                            const CooMatrixAssembler::BCs& bcs)
+{
+  namespace fem = dolfinx::fem;
+  using dolfinx::la::petsc::Matrix;
+  MatZeroEntries(A);
+  fem::assemble_matrix(Matrix::set_block_fn(A, ADD_VALUES), a, bcs);
+  MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY);
+  fem::set_diagonal<double>(Matrix::set_fn(A, INSERT_VALUES),
+                            *a.function_spaces()[0], bcs);
+  MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
+}

@@ -70,4 +70,10 @@ private:
   std::vector<double> _g;           ///< boundary values at those dofs
   std::vector<double> _lift;
 };
+
+/// The same matrix through DOLFINx's own insertion (MatSetValuesBlockedLocal
+/// per cell, then 1 on the constrained rows' diagonal): the reference path
+/// of the solvers' `assembly = "dolfinx"`. No lifting
+void assemble_matrix_per_cell(Mat A, const dolfinx::fem::Form<double>& a,
+                              const CooMatrixAssembler::BCs& bcs);
 } // namespace fsai::common

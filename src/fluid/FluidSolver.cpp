@@ -60,6 +60,9 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
                "matrix insertion: PETSc COO on a recorded pattern, or "
                "DOLFINx's per-cell MatSetValuesLocal (the same matrix to "
                "rounding)");
+  p.add("fluid.quadrature_degree", quadrature_degree,
+        "quadrature degree of the cell integrals, 4 or 2 (both exact for the "
+        "Galerkin terms; 2 samples the stabilisation at fewer points)");
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidParameters::validate() const
@@ -74,6 +77,8 @@ void fsai::fluid::FluidParameters::validate() const
   fsai::require(ksp_rtol > 0 and ksp_rtol < 1, "--fluid.ksp_rtol", "in (0, 1)",
                 ksp_rtol);
   fsai::require(pc_lag >= 1, "--fluid.pc_lag", ">= 1", pc_lag);
+  fsai::require(quadrature_degree == 2 or quadrature_degree == 4,
+                "--fluid.quadrature_degree", "2 or 4", quadrature_degree);
 }
 //-----------------------------------------------------------------------------
 fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
@@ -185,12 +190,17 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
         std::make_shared<fem::Constant<double>>(0.0), std::move(dofs), W01));
   }
 
+  // The system and the residual (forces) with the same quadrature
+  const bool q2 = p.quadrature_degree == 2;
   _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      fluid_forms::a(tdim, 1), {_W, _W}, coeffs, c, sd));
-  _L = std::make_shared<fem::Form<double>>(
-      fem::create_form<double>(fluid_forms::L(tdim, 1), {_W}, coeffs, c, sd));
+      q2 ? fluid_forms::a_q2(tdim, 1) : fluid_forms::a(tdim, 1), {_W, _W},
+      coeffs, c, sd));
+  _L = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      q2 ? fluid_forms::L_q2(tdim, 1) : fluid_forms::L(tdim, 1), {_W}, coeffs,
+      c, sd));
   _F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      fluid_forms::F_res(tdim, 1), {_W}, coeffs, c, sd));
+      q2 ? fluid_forms::F_res_q2(tdim, 1) : fluid_forms::F_res(tdim, 1), {_W},
+      coeffs, c, sd));
   _A = la::petsc::Matrix(fem::petsc::create_matrix(*_a), false);
   if (p.assembly == "coo")
     _coo = std::make_unique<common::CooMatrixAssembler>(_A.mat(), *_a, _bcs);
@@ -306,17 +316,7 @@ int fsai::fluid::FluidSolver::solve()
     if (_coo)
       _coo->assemble(_A.mat(), *_a);
     else
-    {
-      MatZeroEntries(_A.mat());
-      fem::assemble_matrix(
-          la::petsc::Matrix::set_block_fn(_A.mat(), ADD_VALUES), *_a, _bcs);
-      MatAssemblyBegin(_A.mat(), MAT_FLUSH_ASSEMBLY);
-      MatAssemblyEnd(_A.mat(), MAT_FLUSH_ASSEMBLY);
-      fem::set_diagonal<double>(
-          la::petsc::Matrix::set_fn(_A.mat(), INSERT_VALUES), *_W, _bcs);
-      MatAssemblyBegin(_A.mat(), MAT_FINAL_ASSEMBLY);
-      MatAssemblyEnd(_A.mat(), MAT_FINAL_ASSEMBLY);
-    }
+      common::assemble_matrix_per_cell(_A.mat(), *_a, _bcs);
   }
   la::Vector<double> b(_W->dofmap()->index_map, 1);
   {

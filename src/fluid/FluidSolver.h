@@ -76,6 +76,11 @@ struct FluidParameters
   /// matrix to rounding; with "coo" the flow's assembly (matrix and
   /// vector) took 0.63 of its time on the FE glottis scene (stop 30)
   std::string assembly = "coo";
+  /// Quadrature degree of the cell integrals (forms/fluid.py): 4 or 2. Both
+  /// integrate the Galerkin terms exactly on P1; 2 samples the τ-weighted
+  /// stabilisation terms at 3 points per triangle instead of 6 (4 instead
+  /// of 14 per tetrahedron), so the discretisation differs slightly
+  int quadrature_degree = 4;
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
@@ -90,6 +95,22 @@ struct FluidBoundaries
   std::vector<std::int32_t> walls;           ///< v = wall_velocity() (0 or w_D)
   std::vector<std::int32_t> symmetry;        ///< v_y = 0 (axis y = const)
 };
+
+/// The boundaries of fsai::mesh::dfg_channel by its facet tags (m: its
+/// MeshData; a template so that this header need not name the fsai::mesh
+/// namespace, which would hide dolfinx::mesh in the solvers' sources):
+/// Dirichlet inflow, do-nothing outlet, no-slip walls and cylinder
+template <typename TaggedMesh>
+FluidBoundaries dfg_boundaries(const TaggedMesh& m)
+{
+  FluidBoundaries b;
+  b.inlet_dirichlet = m.facet_tags->find(m.facet_tag("inlet"));
+  b.outlet = m.facet_tags->find(m.facet_tag("outlet"));
+  b.walls = m.facet_tags->find(m.facet_tag("walls"));
+  auto cyl = m.facet_tags->find(m.facet_tag("cylinder"));
+  b.walls.insert(b.walls.end(), cyl.begin(), cyl.end());
+  return b;
+}
 
 class FluidSolver
 {

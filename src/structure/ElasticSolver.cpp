@@ -54,6 +54,10 @@ void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
   p.add("solid.newton_warm_start", newton_warm_start,
         "a repeated step (coupling iteration) starts Newton from the last "
         "iteration's solution");
+  p.add_choice("solid.assembly", assembly, {"coo", "dolfinx"},
+               "Newton tangent insertion: PETSc COO on a recorded pattern, or "
+               "DOLFINx's per-cell MatSetValuesBlockedLocal (the same matrix "
+               "to rounding)");
 }
 //-----------------------------------------------------------------------------
 void fsai::structure::SolidParameters::validate() const
@@ -278,15 +282,17 @@ int fsai::structure::ElasticSolver::newton(const std::string& what)
     if (!_J_current or (!linear and (!reuse or _J_stale)))
     {
       common::ScopedTimer t("solid: assemble jacobian");
-      MatZeroEntries(_Jmat.mat());
-      fem::assemble_matrix(
-          la::petsc::Matrix::set_block_fn(_Jmat.mat(), ADD_VALUES), *_J, _bcs);
-      MatAssemblyBegin(_Jmat.mat(), MAT_FLUSH_ASSEMBLY);
-      MatAssemblyEnd(_Jmat.mat(), MAT_FLUSH_ASSEMBLY);
-      fem::set_diagonal<double>(
-          la::petsc::Matrix::set_fn(_Jmat.mat(), INSERT_VALUES), *_V, _bcs);
-      MatAssemblyBegin(_Jmat.mat(), MAT_FINAL_ASSEMBLY);
-      MatAssemblyEnd(_Jmat.mat(), MAT_FINAL_ASSEMBLY);
+      // The tangent's domains, dofmap and fixed dofs never change (what the
+      // COO pattern needs; u = 0 there, so no lifting), only its values. The
+      // pattern is recorded at the first assembly, not in the constructor:
+      // the modal analysis only uses K and M
+      if (_p.assembly == "coo" and !_coo)
+        _coo = std::make_unique<common::CooMatrixAssembler>(_Jmat.mat(), *_J,
+                                                            _bcs);
+      if (_coo)
+        _coo->assemble(_Jmat.mat(), *_J);
+      else
+        common::assemble_matrix_per_cell(_Jmat.mat(), *_J, _bcs);
       _solver.set_operator(_Jmat.mat());
       _J_current = true;
       _J_stale = false;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <common/CooMatrixAssembler.h>
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/Form.h>
@@ -68,6 +69,10 @@ struct SolidParameters
   /// step-to-step oscillation after t = 6 s that the default run does not
   /// show (README, Turek–Hron)
   bool newton_warm_start = false;
+  /// Insertion of the Newton tangent: "coo" (common::CooMatrixAssembler:
+  /// PETSc's COO interface on the pattern recorded at setup) or "dolfinx"
+  /// (MatSetValuesBlockedLocal per cell); the same matrix to rounding
+  std::string assembly = "coo";
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
@@ -171,6 +176,7 @@ private:
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _loaded_tags;
   std::shared_ptr<dolfinx::fem::Form<double>> _R, _J, _K, _M, _F_c;
   dolfinx::la::petsc::Matrix _Jmat;
+  std::unique_ptr<common::CooMatrixAssembler> _coo; // assembly "coo"
   bool _J_current = false;      ///< J assembled and factorised for the current
                                 ///< material, Δt and load mode
   mutable bool _J_stale = true; ///< modified Newton: refactorise before the
