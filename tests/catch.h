@@ -11,10 +11,14 @@
 #undef CHECK
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <mpi.h>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace fsai::test
 {
@@ -55,4 +59,17 @@ private:
   std::filesystem::path _path;
   static inline int _counter = 0;
 };
+
+/// {max |a − b|, max |a|} over all ranks of MPI_COMM_WORLD (a, b: the same
+/// local dofs of two runs)
+inline std::array<double, 2> max_difference(const std::vector<double>& a,
+                                            const std::vector<double>& b)
+{
+  std::array<double, 2> l{0, 0}, g;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    l[0] = std::max(l[0], std::abs(a[i] - b[i])),
+    l[1] = std::max(l[1], std::abs(a[i]));
+  MPI_Allreduce(l.data(), g.data(), 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return g;
+}
 } // namespace fsai::test

@@ -57,18 +57,6 @@ void set_parabolic_inflow(fsai::fluid::FluidSolver& flow, double Umax, double H)
       });
 }
 
-/// {max |a − b|, max |a|} over all ranks
-std::array<double, 2> max_difference(const std::vector<double>& a,
-                                     const std::vector<double>& b)
-{
-  std::array<double, 2> l{0, 0}, g;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    l[0] = std::max(l[0], std::abs(a[i] - b[i])),
-    l[1] = std::max(l[1], std::abs(a[i]));
-  MPI_Allreduce(l.data(), g.data(), 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  return g;
-}
-
 /// DFG 2D-1 (Re = 20) at level 1 of fsai_cylinder (h = 0.02 m, cylinder
 /// h/8): the steady flow for the given stabilisation and quadrature
 struct Dfg2d1
@@ -353,7 +341,7 @@ TEST_CASE("3D channel: the iterative fieldsplit solver matches MUMPS",
                     "rate {:.8e}",
                     solver, its, q.back());
   }
-  const auto g = max_difference(v[0], v[1]);
+  const auto g = fsai::test::max_difference(v[0], v[1]);
   fsai::log::info("Fluid 3D channel: max |v_direct - v_iterative| / max |v| = "
                   "{:.2e}",
                   g[0] / g[1]);
@@ -391,7 +379,7 @@ TEST_CASE("2D channel start-up: the iterative solvers (AMG and ILU velocity "
   }
   for (int k : {1, 2, 3})
   {
-    const auto g = max_difference(v[0], v[k]);
+    const auto g = fsai::test::max_difference(v[0], v[k]);
     fsai::log::info("Fluid 2D start-up, 5 BDF steps: max |v_direct - v_{}| / "
                     "max |v| = {:.2e}",
                     std::array{"", "amg", "ilu", "ilu-lag"}[k], g[0] / g[1]);
@@ -450,7 +438,7 @@ TEST_CASE("COO matrix assembly gives DOLFINx's matrix and lifting: the same "
              flow.pressure()->x()->array().end());
     up.push_back(s);
   }
-  const auto g = max_difference(up[0], up[1]);
+  const auto g = fsai::test::max_difference(up[0], up[1]);
   fsai::log::info("COO vs DOLFINx assembly, 10 steps: max difference of the "
                   "velocity and pressure dofs {:.2e} of their largest {:.3e}",
                   g[0], g[1]);
@@ -476,8 +464,10 @@ TEST_CASE("Quadrature degree 2: the Galerkin system of degree 4 exactly, and "
       p.supg = p.pspg = p.graddiv = stabilised;
       out[stabilised][degree] = dfg.solve(p);
     }
-  const auto galerkin = max_difference(out[false][4].up, out[false][2].up);
-  const auto stab = max_difference(out[true][4].up, out[true][2].up);
+  const auto galerkin
+      = fsai::test::max_difference(out[false][4].up, out[false][2].up);
+  const auto stab
+      = fsai::test::max_difference(out[true][4].up, out[true][2].up);
   const double e4 = out[true][4].dp / Dfg2d1::dp_ref - 1;
   const double e2 = out[true][2].dp / Dfg2d1::dp_ref - 1;
   fsai::log::info(

@@ -214,11 +214,7 @@ TEST_CASE("COO tangent assembly: the same Newton iterates as DOLFINx's "
     u.emplace_back(x.begin(), x.end());
     its.push_back(n);
   }
-  std::array<double, 2> l{0, 0}, g;
-  for (std::size_t i = 0; i < u[0].size(); ++i)
-    l[0] = std::max(l[0], std::abs(u[0][i] - u[1][i])),
-    l[1] = std::max(l[1], std::abs(u[0][i]));
-  MPI_Allreduce(l.data(), g.data(), 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  const auto g = fsai::test::max_difference(u[0], u[1]);
   fsai::log::info("Structure COO vs DOLFINx tangent, 10 SVK steps: {} / {} "
                   "Newton iterations, max difference {:.2e} of {:.3e} m",
                   its[1], its[0], g[0], g[1]);
