@@ -12,7 +12,8 @@ t_settle (default 30 ms) say whether the cycle closes. Stop 22 adds the
 time step this mesh needs (Δt = 1e−5, cases dt1_*; dt05_* is Δt/2): with
 ζ = 0.02 the cycle closes in every cycle there once the mesh motion's gap
 columns stop at g0 + 0.75 R (dt1_z02_c75; the g0 + R runs invert a cell).
-h025_dt1_z02_c75 (stop 23) is its mesh check: h_gap 0.025 mm, h_far 0.25 mm.
+h025_dt1_z02_c75 (stop 23) is its mesh check: h_gap 0.025 mm, h_far 0.25 mm;
+stop 32's cases change one size of the mesh at a time.
 
 Each case is one run of
   mpirun -n 2 fsai_glottis --flow fe --fe.h_gap 0.035e-3 --fe.h_far 0.35e-3
@@ -40,6 +41,8 @@ exe = os.path.join(args.build, "demos", "fsai_glottis")
 res = os.path.join(here, "results")
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 MESH = ["--fe.h_gap", "0.035e-3", "--fe.h_far", "0.35e-3"]
+# the closing cycle's time step and damping (stop 22)
+CLOSING = ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]
 
 # case: (duration [s], options). "conv_fine_01_load" is the convergence
 # study's run at the scene's defaults (0.1 s, stored under that name)
@@ -52,37 +55,47 @@ CASES = {
     "z02_p16": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02", "--p-sub", "1600",
                        "--closure.gap_columns", "1"]),
     # at the time step this mesh needs (Δt = 1e−5: the jet's CFL ≈ 12)
-    "dt1_z02": (0.06, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
-                       "--closure.gap_columns", "1"]),
+    "dt1_z02": (0.06, CLOSING + ["--closure.gap_columns", "1"]),
     # the same with the size-stiffened mesh motion (dt1_z02 inverted a cell
     # at the fold's superior edge)
-    "dt1_z02_size": (0.06, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
-                            "--ale.stiffening", "size", "--closure.gap_columns", "1"]),
+    "dt1_z02_size": (0.06, CLOSING + ["--ale.stiffening", "size", "--closure.gap_columns", "1"]),
     # with the algebraic gap columns up to g0 + 0.75 R (the new default;
     # the two runs above used g0 + R)
-    "dt1_z02_c75": (0.1, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
-                          "--checkpoint-every", "2000"]),
+    "dt1_z02_c75": (0.1, CLOSING + ["--checkpoint-every", "2000"]),
     # the same configuration again with stop 26's faster solvers (OpenBLAS,
     # MUMPS without scaling, superposed mesh motion, wall forces from the
     # wall cells): its wall time, and the run-to-run scatter of 2-rank runs
-    "dt1_z02_c75_s26": (0.1, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]),
+    "dt1_z02_c75_s26": (0.1, CLOSING),
     # its time-step check (Δt/2, the first 0.06 s)
     "dt05_z02_c75": (0.06, ["--dt", "5e-6", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]),
     # its mesh check (stop 23): h_gap 0.025 mm, h_far 0.25 mm (the later
     # options override MESH), the first 0.06 s; continued to 0.1 s in stop
     # 26 from its step-6000 checkpoint (--restart, log run_restart.log)
-    "h025_dt1_z02_c75": (0.1, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
-                                "--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
-                                "--checkpoint-every", "2000"]),
+    "h025_dt1_z02_c75": (0.1, CLOSING + ["--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
+                                         "--checkpoint-every", "2000"]),
     # stop 31: SUPG/PSPG τ without its transient term (2/Δt)² (Hsu et al.
     # 2010; it halved the held glottis's Δt dependence): the first 0.06 s.
     # It failed: coupling stalls near closure, a cell inverted at 26 ms
-    "dt1_z02_c75_taus": (0.06, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
-                                "--fluid.tau_dt=false", "--checkpoint-every", "2000"]),
+    "dt1_z02_c75_taus": (0.06, CLOSING + ["--fluid.tau_dt=false", "--checkpoint-every", "2000"]),
     # stop 31: the cell integrals at quadrature degree 2 (3 points per
     # triangle instead of 6; the Galerkin terms still exact)
-    "dt1_z02_c75_q2": (0.1, ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
-                             "--fluid.quadrature_degree", "2"]),
+    "dt1_z02_c75_q2": (0.1, CLOSING + ["--fluid.quadrature_degree", "2"]),
+    # stop 32: which half of the mesh check moves the peak flow? Each
+    # refines one of the two sizes that h025_dt1_z02_c75 refined together
+    # (the first 0.06 s, compared in t ∈ [0.03, 0.06] s)
+    "hgap025_dt1_z02_c75": (0.06, CLOSING + ["--fe.h_gap", "0.025e-3"]),
+    "hfar025_dt1_z02_c75": (0.06, CLOSING + ["--fe.h_far", "0.25e-3"]),
+    # stop 32: the subglottal channel at 0.7 mm from the inlet to 6 mm
+    # before the fold (--fe.h_inlet; 28764 instead of 31491 unknowns)
+    "dt1_z02_c75_in07": (0.06, CLOSING + ["--fe.h_inlet", "0.7e-3"]),
+    # stop 32: the cheapest variant, both: the subglottal channel at
+    # 0.7 mm and the cell integrals at degree 2 (0.1 s)
+    "dt1_z02_c75_in07_q2": (0.1, CLOSING + ["--fe.h_inlet", "0.7e-3",
+                                            "--fluid.quadrature_degree", "2"]),
+    # stop 32: the jet region (y ≤ 4 mm downstream of the fold's inferior
+    # attachment) at 0.25 mm, h_far 0.35 mm elsewhere: is the far field's
+    # sensitivity (hfar025 above) the jet's?
+    "dt1_z02_c75_jet025": (0.06, CLOSING + ["--fe.h_jet", "0.25e-3"]),
 }
 FOLDER = {"default": "run_glottis_conv_fine_01_load",
           "h025_dt1_z02_c75": "run_glottis_h025_dt1_z02_c75"}

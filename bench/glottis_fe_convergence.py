@@ -26,7 +26,9 @@ and run_glottis_conv_fine_01 (the displacement predictor) as the check that
 the load predictor's run is the same coupled solution. The closing cycle on
 that mesh (ζ1 = ζ2 = 0.02, Δt 1e-5 for 0.1 s and 5e-6 for 0.06 s; stop 22;
 h_gap 0.025 mm / h_far 0.25 mm at Δt 1e-5 for 0.06 s, stop 23) is compared
-in [0.03, 0.06] s (runs of bench/glottis_closure_converged.py).
+in [0.03, 0.06] s (runs of bench/glottis_closure_converged.py), with
+stop 32's single changes of that mesh (one size refined, the subglottal
+channel coarser, the jet region finer).
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv)
 """
@@ -56,11 +58,21 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
         "closing, h 0.035 mm": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
                                 ("dt 5e-6", "run_glottis_h035_dt05_z02_c75"),
                                 ("h 0.025 mm", "run_glottis_h025_dt1_z02_c75"),
-                                ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26")),
+                                ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26"),
+                                # stop 32: one of the two sizes refined at a time
+                                ("h_gap 0.025 mm only", "run_glottis_h035_hgap025_dt1_z02_c75"),
+                                ("h_far 0.25 mm only", "run_glottis_h035_hfar025_dt1_z02_c75"),
+                                # stop 32: the subglottal channel coarser (0.7 mm)
+                                ("h_inlet 0.7 mm", "run_glottis_h035_dt1_z02_c75_in07"),
+                                ("h_jet 0.25 mm", "run_glottis_h035_dt1_z02_c75_jet025")),
         "closing, h 0.035 mm, settled": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
                                          ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26"),
                                          # continued from 0.06 to 0.1 s in stop 26
-                                         ("h 0.025 mm", "run_glottis_h025_dt1_z02_c75"))}
+                                         ("h 0.025 mm", "run_glottis_h025_dt1_z02_c75"),
+                                         # stop 32: --fe.h_inlet 0.7e-3 and
+                                         # --fluid.quadrature_degree 2
+                                         ("h_inlet 0.7 mm, degree 2",
+                                          "run_glottis_h035_dt1_z02_c75_in07_q2"))}
 
 
 def stats(run, t0, t1):

@@ -401,6 +401,62 @@ TEST_CASE("FE glottis: the mesh moved by superposed extensions is the solved "
        << q_superposed << " vs " << q_solved);
 }
 
+TEST_CASE("Glottis channel: h_inlet coarsens the subglottal channel only",
+          "[glottis][mpi]")
+{
+  // Cells summed by region over all ranks: (count, area) upstream of the
+  // coarse box's transition (x < −3 grading) and downstream of it
+  // (x > −grading), with and without h_inlet
+  const FoldProfile profile(GlottisGeometry{});
+  fsai::mesh::ChannelSizes sizes;
+  sizes.h_far = 0.5e-3;
+  sizes.h_gap = 0.1e-3;
+  auto regions = [&](double h_inlet)
+  {
+    sizes.h_inlet = h_inlet;
+    const auto m = fsai::mesh::glottis_channel(MPI_COMM_WORLD, profile, sizes);
+    const auto& topology = m.mesh->topology();
+    const std::int32_t cells = topology.index_map(2)->size_local();
+    const auto& dofs = m.mesh->geometry().dofmap();
+    const auto x = m.mesh->geometry().x();
+    std::array<double, 4> sum = {0, 0, 0, 0}; // up: n, area; down: n, area
+    for (std::int32_t c = 0; c < cells; ++c)
+    {
+      const auto v = dofs.links(c);
+      const double* a = &x[3 * v[0]];
+      const double* b = &x[3 * v[1]];
+      const double* d = &x[3 * v[2]];
+      const double area = 0.5
+                          * std::abs((b[0] - a[0]) * (d[1] - a[1])
+                                     - (d[0] - a[0]) * (b[1] - a[1]));
+      const double xc = (a[0] + b[0] + d[0]) / 3;
+      if (xc < -3 * sizes.grading)
+        sum[0] += 1, sum[1] += area;
+      else if (xc > -sizes.grading)
+        sum[2] += 1, sum[3] += area;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, sum.data(), 4, MPI_DOUBLE, MPI_SUM,
+                  MPI_COMM_WORLD);
+    return sum;
+  };
+  const auto plain = regions(0), coarse = regions(1.5e-3);
+  // Mean cell size upstream: an equilateral triangle of side h has area
+  // (√3/4) h²
+  auto size = [](double n, double area)
+  { return std::sqrt(area / n / (std::sqrt(3.0) / 4)); };
+  const double h_plain = size(plain[0], plain[1]);
+  const double h_coarse = size(coarse[0], coarse[1]);
+  CHECK(std::abs(h_plain / sizes.h_far - 1) < 0.15);
+  CHECK(std::abs(h_coarse / 1.5e-3 - 1) < 0.15);
+  // The same region upstream, the rest of the channel meshed alike
+  CHECK(std::abs(coarse[1] / plain[1] - 1) < 1e-2);
+  CHECK(std::abs(coarse[2] / plain[2] - 1) < 0.02);
+  WARN("subglottal channel (x < -9 mm): mean size "
+       << h_plain * 1e3 << " mm (" << plain[0] << " cells) vs "
+       << h_coarse * 1e3 << " mm (" << coarse[0] << "); x > -3 mm: " << plain[2]
+       << " vs " << coarse[2] << " cells");
+}
+
 TEST_CASE("Elastic fold of the glottis scene: the flow's fold nodes, "
           "in-vacuo modes converge",
           "[glottis][mpi]")

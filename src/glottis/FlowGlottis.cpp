@@ -38,6 +38,9 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
         "axis, downstream of the fold's inferior attachment), h_far "
         "elsewhere [m]");
   p.add("fe.jet_height", jet_height, "height of the jet region [m]");
+  p.add("fe.h_inlet", h_inlet,
+        "> 0: mesh size in the subglottal channel from the inlet to "
+        "2 fe.grading before the fold, coarser than h_far [m]");
   p.add("closure.g_min", g_min,
         "closest approach of the fluid boundary to the axis [m]");
   p.add_choice("closure.gap_motion", gap_motion, {"algebraic", "elastic"},
@@ -64,6 +67,7 @@ void fsai::glottis::FlowGlottisParameters::validate() const
   fsai::require_positive("--fe.grading", grading);
   fsai::require(h_jet >= 0, "--fe.h_jet", ">= 0", h_jet);
   fsai::require_positive("--fe.jet_height", jet_height);
+  fsai::require(h_inlet >= 0, "--fe.h_inlet", ">= 0", h_inlet);
   fsai::require_positive("--closure.g_min", g_min);
   fsai::require(gap_columns >= 0, "--closure.gap_columns", ">= 0", gap_columns);
 }

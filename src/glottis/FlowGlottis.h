@@ -58,7 +58,10 @@ struct FlowGlottisParameters
   /// the fold's inferior attachment to the outlet), finer than h_far
   double h_jet = 0;
   double jet_height = 4e-3; ///< [m]
-  double g_min = 0.02e-3;   ///< closest approach of the fluid boundary [m]
+  /// > 0: mesh size in the subglottal channel from the inlet to 2·grading
+  /// before the fold, coarser than h_far (mesh::ChannelSizes)
+  double h_inlet = 0;
+  double g_min = 0.02e-3; ///< closest approach of the fluid boundary [m]
   /// Mesh motion of the gap between the medial surface and the axis:
   /// "algebraic" (each node keeps its height fraction y/y_s under the
   /// surface point above it; the rest of the mesh by the elastic

@@ -23,9 +23,8 @@ namespace
 /// The channel (and with `with_fold` the fold's own surface, bounded by
 /// the shared fold curve and its lateral attachment at y = H) in the
 /// current gmsh model, meshed
-void build_channel(const fsai::glottis::FoldProfile& profile, double h_far,
-                   double h_gap, double fine_height, double grading,
-                   double h_jet, double jet_height, bool with_fold)
+void build_channel(const fsai::glottis::FoldProfile& profile,
+                   const fsai::mesh::ChannelSizes& h, bool with_fold)
 {
   using namespace fsai::mesh;
   namespace geo = gmsh::model::geo;
@@ -79,38 +78,42 @@ void build_channel(const fsai::glottis::FoldProfile& profile, double h_far,
     gmsh::model::addPhysicalGroup(2, {fold_surface}, 2);
     gmsh::model::setPhysicalName(2, 2, "fold");
   }
-  size_near_curves({fold}, h_gap, h_far, grading, 1000,
-                   fine_height > 0 ? SizeBand{{axis}, fine_height} : SizeBand{},
-                   SizeBox{h_jet, {0, x1, 0, jet_height}, grading});
+  size_near_curves({fold}, h.h_gap, h.h_far, h.grading, 1000,
+                   h.fine_height > 0 ? SizeBand{{axis}, h.fine_height}
+                                     : SizeBand{},
+                   SizeBox{h.h_jet, {0, x1, 0, h.jet_height}, h.grading},
+                   SizeBox{h.h_inlet, {x0, -2 * h.grading, 0, H}, h.grading});
   gmsh::option::setNumber("Mesh.Algorithm", 6);
   gmsh::model::mesh::generate(2);
 }
 
-void check_sizes(const fsai::glottis::FoldProfile& profile, double h_far,
-                 double h_gap, double h_jet)
+void check_sizes(const fsai::glottis::FoldProfile& profile,
+                 const fsai::mesh::ChannelSizes& h)
 {
   const auto& g = profile.geometry();
+  const double h_far = h.h_far, h_gap = h.h_gap, h_jet = h.h_jet;
   fsai::require(h_gap > 0 and h_gap <= g.rest_gap, "--fe.h_gap",
                 "in (0, rest_gap]", h_gap);
   fsai::require(h_far >= h_gap and h_far <= g.half_height / 2, "--fe.h_far",
                 "in [h_gap, half_height/2]", h_far);
   fsai::require(h_jet == 0 or (h_jet >= h_gap and h_jet <= h_far), "--fe.h_jet",
                 "0 or in [h_gap, h_far]", h_jet);
+  fsai::require(h.h_inlet == 0
+                    or (h.h_inlet >= h_far and h.h_inlet <= g.half_height / 2),
+                "--fe.h_inlet", "0 or in [h_far, half_height/2]", h.h_inlet);
+  fsai::require(h.h_inlet == 0 or 3 * h.grading < g.inlet_length,
+                "--fe.grading", "< inlet_length / 3 with --fe.h_inlet",
+                h.grading);
 }
 } // namespace
 
 fsai::mesh::MeshData
 fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
-                            double h_far, double h_gap, double fine_height,
-                            double grading, double h_jet, double jet_height)
+                            const ChannelSizes& sizes)
 {
-  check_sizes(profile, h_far, h_gap, h_jet);
+  check_sizes(profile, sizes);
   return build_with_gmsh(comm, 2,
-                         [&]()
-                         {
-                           build_channel(profile, h_far, h_gap, fine_height,
-                                         grading, h_jet, jet_height, false);
-                         });
+                         [&]() { build_channel(profile, sizes, false); });
 }
 
 fsai::mesh::FluidSolidMeshes
@@ -118,10 +121,13 @@ fsai::mesh::glottis_channel_and_fold(MPI_Comm comm,
                                      const glottis::FoldProfile& profile,
                                      double h_far, double h_gap, double grading)
 {
-  check_sizes(profile, h_far, h_gap, 0.0);
+  ChannelSizes sizes;
+  sizes.h_far = h_far;
+  sizes.h_gap = h_gap;
+  sizes.grading = grading;
+  check_sizes(profile, sizes);
   auto parts = build_parts_with_gmsh(
-      comm, 2,
-      [&]() { build_channel(profile, h_far, h_gap, 0, grading, 0, 0, true); },
+      comm, 2, [&]() { build_channel(profile, sizes, true); },
       {"fluid", "fold"});
   return {std::move(parts[0]), std::move(parts[1])};
 }

@@ -12,22 +12,37 @@ class FoldProfile;
 
 namespace fsai::mesh
 {
+/// Mesh sizes of the glottis channel [m]
+struct ChannelSizes
+{
+  double h_far = 0.5e-3;  ///< away from the fold
+  double h_gap = 0.05e-3; ///< on the fold
+  /// > 0: h_gap only up to fine_height from the axis; above, the size
+  /// grows with the distance from that band in the same way, so that the
+  /// fold's upper flanks, where the air is nearly at rest, are not meshed
+  /// at the glottis's size
+  double fine_height = 0;
+  double grading = 3e-3; ///< the size grows from h_gap to h_far over this
+  /// > 0: at most h_jet in the jet region, y ≤ jet_height from the fold's
+  /// inferior attachment (x = 0) to the outlet (growing to h_far over
+  /// `grading` outside it)
+  double h_jet = 0;
+  double jet_height = 0;
+  /// > 0: at least h_inlet in the subglottal channel up to 2·grading
+  /// before the fold's inferior attachment (x ≤ −2 grading), falling to
+  /// the other sizes over `grading` downstream of it
+  double h_inlet = 0;
+};
+
 /// The flow domain of the glottis scene (shared/DESIGN.md §2 "Glottis
 /// closure"): the symmetric half-channel 0 ≤ y ≤ H from x = −inlet_length
 /// to x = fold_length + outlet_length, less the fold (its surface a spline
 /// through the profile points). Facet groups "inlet", "outlet", "axis"
 /// (y = 0), "wall" (y = H) and "fold"; cell group "fluid". Size h_gap on
-/// the fold, growing linearly to h_far at `grading` from it. fine_height > 0:
-/// h_gap only up to fine_height from the axis; above, the size grows
-/// with the distance from that band in the same way, so that the fold's
-/// upper flanks, where the air is nearly at rest, are not meshed at the
-/// glottis's size. h_jet > 0: at most h_jet in the jet region, y ≤
-/// jet_height from the fold's inferior attachment (x = 0) to the outlet
-/// (growing to h_far over `grading` outside it).
+/// the fold, growing linearly to h_far at `grading` from it; see
+/// ChannelSizes for the finer and coarser regions.
 MeshData glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
-                         double h_far, double h_gap, double fine_height = 0,
-                         double grading = 3e-3, double h_jet = 0,
-                         double jet_height = 0);
+                         const ChannelSizes& sizes);
 
 /// Points (in the current gmsh geo model) of the fold curve, superior to
 /// inferior: its superior attachment (T, H) first, every 2nd profile point,

@@ -386,7 +386,7 @@ fsai::mesh::build_parts_with_gmsh(MPI_Comm comm, int gdim,
 void fsai::mesh::size_near_curves(const std::vector<int>& curves, double h_min,
                                   double h_max, double dist_max,
                                   int points_per_curve, const SizeBand& band,
-                                  const SizeBox& box)
+                                  const SizeBox& box, const SizeBox& coarse)
 {
   namespace field = gmsh::model::mesh::field;
   // h_min up to `dist_min` from `on`, h_max from dist_min + dist_max on
@@ -404,6 +404,19 @@ void fsai::mesh::size_near_curves(const std::vector<int>& curves, double h_min,
     field::setNumber(ft, "DistMax", dist_min + dist_max);
     return ft;
   };
+  // box.size inside the box, `outside` beyond its transition layer
+  auto box_field = [](const SizeBox& box, double outside)
+  {
+    const int fb = field::add("Box");
+    field::setNumber(fb, "VIn", box.size);
+    field::setNumber(fb, "VOut", outside);
+    field::setNumber(fb, "XMin", box.xy[0]);
+    field::setNumber(fb, "XMax", box.xy[1]);
+    field::setNumber(fb, "YMin", box.xy[2]);
+    field::setNumber(fb, "YMax", box.xy[3]);
+    field::setNumber(fb, "Thickness", box.transition);
+    return fb;
+  };
   int f = graded(curves, 0.0);
   if (!band.curves.empty())
   {
@@ -414,17 +427,18 @@ void fsai::mesh::size_near_curves(const std::vector<int>& curves, double h_min,
   }
   if (box.size > 0)
   {
-    const int fb = field::add("Box");
-    field::setNumber(fb, "VIn", box.size);
-    field::setNumber(fb, "VOut", h_max);
-    field::setNumber(fb, "XMin", box.xy[0]);
-    field::setNumber(fb, "XMax", box.xy[1]);
-    field::setNumber(fb, "YMin", box.xy[2]);
-    field::setNumber(fb, "YMax", box.xy[3]);
-    field::setNumber(fb, "Thickness", box.transition);
     const int fmin = field::add("Min");
-    field::setNumbers(fmin, "FieldsList", {double(f), double(fb)});
+    field::setNumbers(fmin, "FieldsList",
+                      {double(f), double(box_field(box, h_max))});
     f = fmin;
+  }
+  if (coarse.size > 0)
+  {
+    // Outside the box (and its transition) the Max takes the other fields
+    const int fmax = field::add("Max");
+    field::setNumbers(fmax, "FieldsList",
+                      {double(f), double(box_field(coarse, h_min))});
+    f = fmax;
   }
   field::setAsBackgroundMesh(f);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);

@@ -71,7 +71,9 @@ struct SizeBand
   double width = 0;
 };
 /// `box` (optional, size > 0): size at most box.size inside the
-/// axis-aligned box, growing to h_max over box.transition outside it
+/// axis-aligned box, growing to h_max over box.transition outside it;
+/// `coarse` (optional, size > 0): size at least coarse.size inside its
+/// box, falling to the other fields' size over coarse.transition outside
 struct SizeBox
 {
   double size = 0;                         ///< 0: no box
@@ -80,7 +82,8 @@ struct SizeBox
 };
 void size_near_curves(const std::vector<int>& curves, double h_min,
                       double h_max, double dist_max, int points_per_curve = 200,
-                      const SizeBand& band = {}, const SizeBox& box = {});
+                      const SizeBand& band = {}, const SizeBox& box = {},
+                      const SizeBox& coarse = {});
 
 /// Build a mesh from a gmsh `.geo` file: the file is opened and meshed in
 /// dimension `gdim` on rank 0 and distributed.
