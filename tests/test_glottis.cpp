@@ -307,8 +307,8 @@ namespace
 FlowGlottisSetup coarse_fast_setup()
 {
   FlowGlottisSetup setup;
-  setup.fe.h_far = 1e-3;
-  setup.fe.h_gap = 0.1e-3;
+  setup.fe.sizes.h_far = 1e-3;
+  setup.fe.sizes.h_gap = 0.1e-3;
   setup.fe.ramp = 1e-3;
   return setup;
 }

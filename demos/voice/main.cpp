@@ -279,8 +279,8 @@ int main(int argc, char* argv[])
           // 0.04 s (the sound's f0 needs two periods in the window)
           vp.duration = 0.04;
           vp.dt = 5e-5;
-          fe.h_far = 1e-3;
-          fe.h_gap = 0.1e-3;
+          fe.sizes.h_far = 1e-3;
+          fe.sizes.h_gap = 0.1e-3;
           vg.h = 0.008;
           vf.h0 = 0.15e-3;
           vp.stats_from = 0.4;

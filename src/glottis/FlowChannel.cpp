@@ -50,9 +50,7 @@ fsai::glottis::FlowChannel::FlowChannel(MPI_Comm comm,
   const auto& g = profile.geometry();
   fsai::require(p.g_min < g.rest_gap, "--closure.g_min", "< the rest gap",
                 p.g_min);
-  _mesh = mesh::glottis_channel(comm, profile,
-                                {p.h_far, p.h_gap, p.fine_height, p.grading,
-                                 p.h_jet, p.jet_height, p.h_inlet});
+  _mesh = mesh::glottis_channel(comm, profile, p.sizes);
   auto find = [&](const char* name)
   { return _mesh.facet_tags->find(_mesh.facet_tag(name)); };
   _fold_facets = find("fold");

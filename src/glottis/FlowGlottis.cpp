@@ -24,21 +24,21 @@ constexpr double lever = 1e-3; // ℓ: coupling variable (h, ℓφ) [m]
 void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
 {
   p.add("fe.ramp", ramp, "time over which p_sub ramps up [s]");
-  p.add("fe.h_far", h_far, "mesh size away from the fold [m]");
-  p.add("fe.h_gap", h_gap, "mesh size on the fold [m]");
-  p.add("fe.fine_height", fine_height,
+  p.add("fe.h_far", sizes.h_far, "mesh size away from the fold [m]");
+  p.add("fe.h_gap", sizes.h_gap, "mesh size on the fold [m]");
+  p.add("fe.fine_height", sizes.fine_height,
         "> 0: mesh size h_gap only within this distance of the axis, the "
         "size growing beyond it as away from the fold (0: on all of the "
         "fold) [m]");
-  p.add("fe.grading", grading,
+  p.add("fe.grading", sizes.grading,
         "distance from the fold over which the mesh size grows from h_gap "
         "to h_far [m]");
-  p.add("fe.h_jet", h_jet,
+  p.add("fe.h_jet", sizes.h_jet,
         "> 0: mesh size in the jet region (within fe.jet_height of the "
         "axis, downstream of the fold's inferior attachment), h_far "
         "elsewhere [m]");
-  p.add("fe.jet_height", jet_height, "height of the jet region [m]");
-  p.add("fe.h_inlet", h_inlet,
+  p.add("fe.jet_height", sizes.jet_height, "height of the jet region [m]");
+  p.add("fe.h_inlet", sizes.h_inlet,
         "> 0: mesh size in the subglottal channel from the inlet to "
         "2 fe.grading before the fold, coarser than h_far [m]");
   p.add("closure.g_min", g_min,
@@ -61,13 +61,14 @@ void fsai::glottis::FlowGlottisParameters::validate() const
   fsai::require_positive("--p-sub", p_sub);
   fsai::require(ramp >= 0, "--fe.ramp", ">= 0", ramp);
   fsai::require_positive("--dt", dt);
-  fsai::require_positive("--fe.h_far", h_far);
-  fsai::require_positive("--fe.h_gap", h_gap);
-  fsai::require(fine_height >= 0, "--fe.fine_height", ">= 0", fine_height);
-  fsai::require_positive("--fe.grading", grading);
-  fsai::require(h_jet >= 0, "--fe.h_jet", ">= 0", h_jet);
-  fsai::require_positive("--fe.jet_height", jet_height);
-  fsai::require(h_inlet >= 0, "--fe.h_inlet", ">= 0", h_inlet);
+  fsai::require_positive("--fe.h_far", sizes.h_far);
+  fsai::require_positive("--fe.h_gap", sizes.h_gap);
+  fsai::require(sizes.fine_height >= 0, "--fe.fine_height", ">= 0",
+                sizes.fine_height);
+  fsai::require_positive("--fe.grading", sizes.grading);
+  fsai::require(sizes.h_jet >= 0, "--fe.h_jet", ">= 0", sizes.h_jet);
+  fsai::require_positive("--fe.jet_height", sizes.jet_height);
+  fsai::require(sizes.h_inlet >= 0, "--fe.h_inlet", ">= 0", sizes.h_inlet);
   fsai::require_positive("--closure.g_min", g_min);
   fsai::require(gap_columns >= 0, "--closure.gap_columns", ">= 0", gap_columns);
 }

@@ -33,6 +33,7 @@
 #include <fluid/FluidSolver.h>
 #include <memory>
 #include <mesh/MeshData.h>
+#include <mesh/glottis_channel.h>
 #include <mpi.h>
 
 namespace fsai::common
@@ -45,22 +46,12 @@ namespace fsai::glottis
 /// [fe] and [closure] sections
 struct FlowGlottisParameters
 {
-  double p_sub = 800;     ///< subglottal pressure [Pa]
-  double ramp = 5e-3;     ///< p_sub ramps up smoothly over this time [s]
-  double dt = 2e-5;       ///< time step [s]
-  double h_far = 0.5e-3;  ///< mesh size away from the fold [m]
-  double h_gap = 0.05e-3; ///< mesh size on the fold [m]
-  /// > 0: the fold is meshed at h_gap only up to this distance from the
-  /// axis (the glottis), its upper flanks coarser (0: all of the fold)
-  double fine_height = 0;
-  double grading = 3e-3; ///< distance over which the size grows to h_far [m]
-  /// > 0: mesh size in the jet region (within jet_height of the axis, from
-  /// the fold's inferior attachment to the outlet), finer than h_far
-  double h_jet = 0;
-  double jet_height = 4e-3; ///< [m]
-  /// > 0: mesh size in the subglottal channel from the inlet to 2·grading
-  /// before the fold, coarser than h_far (mesh::ChannelSizes)
-  double h_inlet = 0;
+  double p_sub = 800; ///< subglottal pressure [Pa]
+  double ramp = 5e-3; ///< p_sub ramps up smoothly over this time [s]
+  double dt = 2e-5;   ///< time step [s]
+  /// Mesh sizes of the channel (--fe.h_far, --fe.h_gap, ...), passed
+  /// whole to mesh::glottis_channel
+  mesh::ChannelSizes sizes;
   double g_min = 0.02e-3; ///< closest approach of the fluid boundary [m]
   /// Mesh motion of the gap between the medial surface and the axis:
   /// "algebraic" (each node keeps its height fraction y/y_s under the

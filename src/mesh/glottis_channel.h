@@ -27,7 +27,7 @@ struct ChannelSizes
   /// inferior attachment (x = 0) to the outlet (growing to h_far over
   /// `grading` outside it)
   double h_jet = 0;
-  double jet_height = 0;
+  double jet_height = 4e-3;
   /// > 0: at least h_inlet in the subglottal channel up to 2·grading
   /// before the fold's inferior attachment (x ≤ −2 grading), falling to
   /// the other sizes over `grading` downstream of it
