@@ -13,7 +13,10 @@ time step this mesh needs (Δt = 1e−5, cases dt1_*; dt05_* is Δt/2): with
 ζ = 0.02 the cycle closes in every cycle there once the mesh motion's gap
 columns stop at g0 + 0.75 R (dt1_z02_c75; the g0 + R runs invert a cell).
 h025_dt1_z02_c75 (stop 23) is its mesh check: h_gap 0.025 mm, h_far 0.25 mm;
-stop 32's cases change one size of the mesh at a time.
+stop 32's cases change one size of the mesh at a time; stop 33's
+h025_dt07_z02_c75 refines the mesh as h025 and Δt by 0.7 together (the same
+CFL number), continued to 0.1 s from its step-8000 checkpoint (--restart,
+log run_restart.log).
 
 Each case is one run of
   mpirun -n 2 fsai_glottis --flow fe --fe.h_gap 0.035e-3 --fe.h_far 0.35e-3
@@ -96,9 +99,16 @@ CASES = {
     # attachment) at 0.25 mm, h_far 0.35 mm elsewhere: is the far field's
     # sensitivity (hfar025 above) the jet's?
     "dt1_z02_c75_jet025": (0.06, CLOSING + ["--fe.h_jet", "0.25e-3"]),
+    # stop 33: mesh and step refined together at the reference's CFL
+    # (h_gap 0.025 / h_far 0.25 mm as h025_dt1_z02_c75, Δt 0.7e-5 = 0.7 ×
+    # 1e-5 for the sizes' ratio 0.714): refining h alone (h025, −2.6 %) and
+    # Δt alone (dt05, +2.5 %) moved the peak flow in opposite directions
+    "h025_dt07_z02_c75": (0.06, CLOSING + ["--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
+                                          "--dt", "0.7e-5", "--checkpoint-every", "2000"]),
 }
 FOLDER = {"default": "run_glottis_conv_fine_01_load",
-          "h025_dt1_z02_c75": "run_glottis_h025_dt1_z02_c75"}
+          "h025_dt1_z02_c75": "run_glottis_h025_dt1_z02_c75",
+          "h025_dt07_z02_c75": "run_glottis_h025_dt07_z02_c75"}
 
 
 def folder(case):
@@ -126,7 +136,8 @@ for case, (duration, opts) in CASES.items():
     with open(os.path.join(out, "series.csv")) as f:
         r = [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
     wins, t0 = [], 0.0
-    while t0 < r[-1]["t_s"] - 1e-9:
+    # (not a window of a step or two: a run of Δt 0.7e-5 ends at 0.100002 s)
+    while t0 < r[-1]["t_s"] - 1e-4:
         s = [x["gap_m"] for x in r if t0 < x["t_s"] <= t0 + 0.005 + 1e-12]
         wins.append((t0, min(s), max(s)))
         t0 += 0.005

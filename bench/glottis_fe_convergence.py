@@ -28,7 +28,8 @@ that mesh (ζ1 = ζ2 = 0.02, Δt 1e-5 for 0.1 s and 5e-6 for 0.06 s; stop 22;
 h_gap 0.025 mm / h_far 0.25 mm at Δt 1e-5 for 0.06 s, stop 23) is compared
 in [0.03, 0.06] s (runs of bench/glottis_closure_converged.py), with
 stop 32's single changes of that mesh (one size refined, the subglottal
-channel coarser, the jet region finer).
+channel coarser, the jet region finer) and stop 33's refinement of h and Δt
+together at the same CFL (h_gap 0.025 mm, h_far 0.25 mm, Δt 0.7e-5).
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv)
 """
@@ -64,7 +65,10 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
                                 ("h_far 0.25 mm only", "run_glottis_h035_hfar025_dt1_z02_c75"),
                                 # stop 32: the subglottal channel coarser (0.7 mm)
                                 ("h_inlet 0.7 mm", "run_glottis_h035_dt1_z02_c75_in07"),
-                                ("h_jet 0.25 mm", "run_glottis_h035_dt1_z02_c75_jet025")),
+                                ("h_jet 0.25 mm", "run_glottis_h035_dt1_z02_c75_jet025"),
+                                # stop 33: h and Δt refined together at the
+                                # same CFL (h × 0.714, Δt × 0.7)
+                                ("h 0.025 mm, dt 0.7e-5", "run_glottis_h025_dt07_z02_c75")),
         "closing, h 0.035 mm, settled": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
                                          ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26"),
                                          # continued from 0.06 to 0.1 s in stop 26
@@ -72,13 +76,17 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
                                          # stop 32: --fe.h_inlet 0.7e-3 and
                                          # --fluid.quadrature_degree 2
                                          ("h_inlet 0.7 mm, degree 2",
-                                          "run_glottis_h035_dt1_z02_c75_in07_q2"))}
+                                          "run_glottis_h035_dt1_z02_c75_in07_q2"),
+                                         # stop 33, continued from 0.056 to 0.1 s
+                                         ("h 0.025 mm, dt 0.7e-5",
+                                          "run_glottis_h025_dt07_z02_c75"))}
 
 
 def stats(run, t0, t1):
     with open(os.path.join(res, run, "series.csv")) as f:
         r = [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
-    if r[-1]["t_s"] < t1 - 1e-9:
+    # (a run's last step may fall short of t1 by less than its Δt)
+    if r[-1]["t_s"] < t1 - 1e-5:
         return None
     w = [x for x in r if t0 <= x["t_s"] <= t1 + 1e-12]
     g = [x["gap_m"] for x in w]
