@@ -467,8 +467,8 @@ TEST_CASE("Elastic fold of the glottis scene: the flow's fold nodes, "
   const FoldProfile profile(GlottisGeometry{});
   auto build = [&](double h_gap, double h_far)
   {
-    return fsai::mesh::glottis_channel_and_fold(MPI_COMM_WORLD, profile, h_far,
-                                                h_gap);
+    return fsai::mesh::glottis_channel_and_fold(
+        MPI_COMM_WORLD, profile, {.h_far = h_far, .h_gap = h_gap});
   };
   auto fold_points = [](const fsai::mesh::MeshData& m)
   {

@@ -76,7 +76,8 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
     : _comm(comm), _profile(profile)
 {
   p.validate();
-  _mesh = mesh::glottis_channel_and_fold(comm, profile, p.h_far, p.h_surface)
+  _mesh = mesh::glottis_channel_and_fold(
+              comm, profile, {.h_far = p.h_far, .h_gap = p.h_surface})
               .solid;
   structure::SolidParameters sp;
   sp.degree = p.degree;

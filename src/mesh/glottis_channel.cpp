@@ -4,6 +4,7 @@
 #include <common/errors.h>
 #include <glottis/FoldProfile.h>
 #include <gmsh.h>
+#include <stdexcept>
 
 std::vector<int>
 fsai::mesh::add_fold_points(const glottis::FoldProfile& profile)
@@ -119,12 +120,13 @@ fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
 fsai::mesh::FluidSolidMeshes
 fsai::mesh::glottis_channel_and_fold(MPI_Comm comm,
                                      const glottis::FoldProfile& profile,
-                                     double h_far, double h_gap, double grading)
+                                     const ChannelSizes& sizes)
 {
-  ChannelSizes sizes;
-  sizes.h_far = h_far;
-  sizes.h_gap = h_gap;
-  sizes.grading = grading;
+  // The fold's mesh shares the channel's size field, which has no fine
+  // band, jet box or coarser inlet here
+  if (sizes.fine_height != 0 or sizes.h_jet != 0 or sizes.h_inlet != 0)
+    throw std::invalid_argument("glottis_channel_and_fold: fine_height, "
+                                "h_jet and h_inlet must be 0");
   check_sizes(profile, sizes);
   auto parts = build_parts_with_gmsh(
       comm, 2, [&]() { build_channel(profile, sizes, true); },

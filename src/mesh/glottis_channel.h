@@ -56,9 +56,9 @@ std::vector<int> add_fold_points(const glottis::FoldProfile& profile);
 /// curve: `fluid` as above, `solid` the fold (cell group "fold") between
 /// the curve "fold" and its lateral attachment "attachment" (y = H, from
 /// the inferior to the superior attachment point), meshed with the same
-/// size field (h_gap at the surface)
+/// size field (h_gap at the surface; of `sizes` only h_far, h_gap and
+/// grading: the finer and coarser regions must be off)
 FluidSolidMeshes glottis_channel_and_fold(MPI_Comm comm,
                                           const glottis::FoldProfile& profile,
-                                          double h_far, double h_gap,
-                                          double grading = 3e-3);
+                                          const ChannelSizes& sizes);
 } // namespace fsai::mesh
