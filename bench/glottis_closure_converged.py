@@ -105,10 +105,17 @@ CASES = {
     # Δt alone (dt05, +2.5 %) moved the peak flow in opposite directions
     "h025_dt07_z02_c75": (0.06, CLOSING + ["--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
                                           "--dt", "0.7e-5", "--checkpoint-every", "2000"]),
+    # stop 34: the third level of that series, h_gap 0.0175 / h_far 0.175 mm
+    # (× 0.7 again; 120735 unknowns) at Δt 0.7e-5: the CFL of h025_dt1
+    # (≈ 16 at 40 m/s), whose cycle h025_dt07 matched within 0.1 %. Is the
+    # 0.025 mm mesh converged where the 0.035 mm one missed by 0.5 point?
+    "h0175_dt07_z02_c75": (0.1, CLOSING + ["--fe.h_gap", "0.0175e-3", "--fe.h_far", "0.175e-3",
+                                           "--dt", "0.7e-5", "--checkpoint-every", "1000"]),
 }
 FOLDER = {"default": "run_glottis_conv_fine_01_load",
           "h025_dt1_z02_c75": "run_glottis_h025_dt1_z02_c75",
-          "h025_dt07_z02_c75": "run_glottis_h025_dt07_z02_c75"}
+          "h025_dt07_z02_c75": "run_glottis_h025_dt07_z02_c75",
+          "h0175_dt07_z02_c75": "run_glottis_h0175_dt07_z02_c75"}
 
 
 def folder(case):

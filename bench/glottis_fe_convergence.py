@@ -31,10 +31,21 @@ stop 32's single changes of that mesh (one size refined, the subglottal
 channel coarser, the jet region finer) and stop 33's refinement of h and Δt
 together at the same CFL (h_gap 0.025 mm, h_far 0.25 mm, Δt 0.7e-5).
 
-usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv)
+Stop 34 adds the third level of that series, h_gap 0.0175 mm / h_far
+0.175 mm at Δt 0.7e-5 (case h0175_dt07_z02_c75), and the observed order of
+convergence with the grid convergence index of the three levels 0.035,
+0.025, 0.0175 mm (Celik et al. 2008, J. Fluids Eng. 130:078001, eqs. 1-8;
+the Δt of the levels, 1e-5 / 0.7e-5 / 0.7e-5, is treated as converged:
+the 0.025 mm mesh's cycle at Δt 1e-5 and 0.7e-5 agree within 0.1-0.3 %).
+
+usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
+                                          and glottis_fe_three_levels.csv)
 """
 import csv
+import math
 import os
+
+from benchlib import write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 res = os.path.join(here, "results")
@@ -79,7 +90,16 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
                                           "run_glottis_h035_dt1_z02_c75_in07_q2"),
                                          # stop 33, continued from 0.056 to 0.1 s
                                          ("h 0.025 mm, dt 0.7e-5",
-                                          "run_glottis_h025_dt07_z02_c75"))}
+                                          "run_glottis_h025_dt07_z02_c75"),
+                                         # stop 34: the third level
+                                         ("h 0.0175 mm, dt 0.7e-5",
+                                          "run_glottis_h0175_dt07_z02_c75"))}
+RUNS["closing, h 0.035 mm"] += (("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75"),)
+# the three levels (h_gap [mm], run) for the observed order, coarse to fine,
+# and the windows they are compared in
+LEVELS = ((0.035, "run_glottis_h035_dt1_z02_c75"), (0.025, "run_glottis_h025_dt07_z02_c75"),
+          (0.0175, "run_glottis_h0175_dt07_z02_c75"))
+LEVEL_WINDOWS = ((0.03, 0.06), (0.05, 0.1))
 
 
 def stats(run, t0, t1):
@@ -128,7 +148,65 @@ for win, (t0, t1) in WINDOWS.items():
               f"{1e3 * gmin:+.3f} / {1e3 * gmax:.3f} mm | "
               f"{rows[-1]['f0_change_pct']:+.2f} % | {rows[-1]['q_peak_change_pct']:+.2f} % | "
               f"{rows[-1]['q_cycle_peak_change_pct']:+.2f} % |")
-with open(os.path.join(res, "glottis_fe_convergence.csv"), "w", newline="") as f:
-    wr = csv.DictWriter(f, fieldnames=list(rows[0]))
-    wr.writeheader()
-    wr.writerows(rows)
+write_rows(os.path.join(res, "glottis_fe_convergence.csv"), rows)
+
+
+def observed_order(h, phi):
+    """Celik et al. (2008), eqs. 3-7, for three levels h[0] > h[1] > h[2]:
+    the observed order p (fixed-point iteration of eq. 3, for refinement
+    ratios that differ), the extrapolated value phi_ext (eq. 5) and the fine
+    level's grid convergence index GCI_fine = 1.25 e21 / (r21^p - 1) (eq. 7),
+    with r21 = h[1]/h[2] and e21 = |phi[2] - phi[1]| / |phi[2]|. Oscillatory
+    convergence (the two changes of opposite sign) or none (a change below
+    1e-12) has no order: returns None."""
+    r21, r32 = h[1] / h[2], h[0] / h[1]
+    e21, e32 = phi[2] - phi[1], phi[1] - phi[0]
+    if abs(e21) < 1e-12 * abs(phi[2]) or e21 * e32 <= 0:
+        return None
+    p = 1.0
+    for _ in range(100):
+        q = math.log((r21 ** p - 1) / (r32 ** p - 1))
+        p_new = abs(math.log(abs(e32 / e21)) + q) / math.log(r21)
+        if abs(p_new - p) < 1e-10:
+            break
+        p = p_new
+    ext = (r21 ** p * phi[2] - phi[1]) / (r21 ** p - 1)
+    gci = 1.25 * abs(e21 / phi[2]) / (r21 ** p - 1)
+    return p, ext, gci
+
+
+print("\nThree levels (h_gap 0.035 / 0.025 / 0.0175 mm), observed order (Celik et al. 2008):")
+print("| window | quantity | 0.035 mm | 0.025 mm | 0.0175 mm | change 0.035→0.025 | change 0.025→0.0175 "
+      "| observed order p | extrapolated | GCI of 0.0175 mm | 0.025 mm from extrapolated |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
+level_rows = []
+for t0, t1 in LEVEL_WINDOWS:
+    st = []
+    for h, run in LEVELS:
+        if not os.path.exists(os.path.join(res, run, "series.csv")):
+            break
+        s = stats(run, t0, t1)
+        if s is None:
+            break
+        st.append(s)
+    if len(st) < 3:
+        print(f"| [{t0}, {t1}] s | (a level does not reach {t1} s yet) |")
+        continue
+    hs = [h for h, _ in LEVELS]
+    for name, k, scale, unit in (("f0", 0, 1.0, "Hz"), ("peak flow", 1, 1e3, "l/s"),
+                                 ("mean cycle peak", 5, 1e3, "l/s")):
+        phi = [scale * x[k] for x in st]
+        o = observed_order(hs, phi)
+        c1, c2 = 100 * (phi[1] / phi[0] - 1), 100 * (phi[2] / phi[1] - 1)
+        row = {"window": f"{t0}-{t1}", "quantity": name, "coarse": phi[0], "medium": phi[1], "fine": phi[2],
+               "change_coarse_medium_pct": c1, "change_medium_fine_pct": c2,
+               "order": o[0] if o else float("nan"), "extrapolated": o[1] if o else float("nan"),
+               "gci_fine_pct": 100 * o[2] if o else float("nan"),
+               "medium_from_extrapolated_pct": 100 * (phi[1] / o[1] - 1) if o else float("nan")}
+        level_rows.append(row)
+        tail = (f"{o[0]:.2f} | {o[1]:.4f} {unit} | {100 * o[2]:.2f} % | {row['medium_from_extrapolated_pct']:+.2f} %"
+                if o else "none (changes of opposite sign) | | |")
+        print(f"| [{t0}, {t1}] s | {name} | {phi[0]:.4f} | {phi[1]:.4f} | {phi[2]:.4f} | {c1:+.2f} % | {c2:+.2f} % "
+              f"| {tail} |")
+if level_rows:
+    write_rows(os.path.join(res, "glottis_fe_three_levels.csv"), level_rows)
