@@ -156,13 +156,19 @@ def observed_order(h, phi):
     the observed order p (fixed-point iteration of eq. 3, for refinement
     ratios that differ), the extrapolated value phi_ext (eq. 5) and the fine
     level's grid convergence index GCI_fine = 1.25 e21 / (r21^p - 1) (eq. 7),
-    with r21 = h[1]/h[2] and e21 = |phi[2] - phi[1]| / |phi[2]|. Oscillatory
-    convergence (the two changes of opposite sign) or none (a change below
-    1e-12) has no order: returns None."""
+    with r21 = h[1]/h[2] and e21 = |phi[2] - phi[1]| / |phi[2]|. No order
+    (returns the reason as a string) for oscillatory convergence (the two
+    changes of opposite sign), for a change that grows with refinement
+    (|e21| >= |e32|: not in the asymptotic range; eq. 3's absolute value
+    would turn it into a positive order) or for no change at all."""
     r21, r32 = h[1] / h[2], h[0] / h[1]
     e21, e32 = phi[2] - phi[1], phi[1] - phi[0]
-    if abs(e21) < 1e-12 * abs(phi[2]) or e21 * e32 <= 0:
-        return None
+    if abs(e21) < 1e-12 * abs(phi[2]):
+        return "no change"
+    if e21 * e32 <= 0:
+        return "none (changes of opposite sign)"
+    if abs(e21) >= abs(e32):
+        return "none (the change grows with refinement)"
     p = 1.0
     for _ in range(100):
         q = math.log((r21 ** p - 1) / (r32 ** p - 1))
@@ -197,6 +203,7 @@ for t0, t1 in LEVEL_WINDOWS:
                                  ("mean cycle peak", 5, 1e3, "l/s")):
         phi = [scale * x[k] for x in st]
         o = observed_order(hs, phi)
+        why, o = (o, None) if isinstance(o, str) else ("", o)
         c1, c2 = 100 * (phi[1] / phi[0] - 1), 100 * (phi[2] / phi[1] - 1)
         row = {"window": f"{t0}-{t1}", "quantity": name, "coarse": phi[0], "medium": phi[1], "fine": phi[2],
                "change_coarse_medium_pct": c1, "change_medium_fine_pct": c2,
@@ -205,7 +212,7 @@ for t0, t1 in LEVEL_WINDOWS:
                "medium_from_extrapolated_pct": 100 * (phi[1] / o[1] - 1) if o else float("nan")}
         level_rows.append(row)
         tail = (f"{o[0]:.2f} | {o[1]:.4f} {unit} | {100 * o[2]:.2f} % | {row['medium_from_extrapolated_pct']:+.2f} %"
-                if o else "none (changes of opposite sign) | | |")
+                if o else f"{why} | | |")
         print(f"| [{t0}, {t1}] s | {name} | {phi[0]:.4f} | {phi[1]:.4f} | {phi[2]:.4f} | {c1:+.2f} % | {c2:+.2f} % "
               f"| {tail} |")
 if level_rows:
