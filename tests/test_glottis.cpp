@@ -244,6 +244,8 @@ TEST_CASE("Limit-cycle measures of a known waveform", "[glottis]")
   CHECK(cs.period_cv < 1e-4);
   CHECK(cs.q_peak_cv < 1e-6);
   CHECK(cs.q_peak_mean == Approx(a + c).epsilon(1e-6));
+  CHECK(std::abs(cs.q_peak_drift) < 1e-6);
+  CHECK(std::abs(cs.period_drift) < 1e-4);
   // Alternating cycles (period 2: amplitudes a and a/2 with the same mean
   // crossing): the per-cycle peaks a + c and a/2 + c, CV (a/2)/(3a/2 + 2c)
   for (std::size_t k = 0; k < t.size(); ++k)
@@ -259,6 +261,22 @@ TEST_CASE("Limit-cycle measures of a known waveform", "[glottis]")
   CHECK(alt.q_peak_cv
         == Approx(0.5 * (p1 - p2) / (0.5 * (p1 + p2))).epsilon(0.05));
   CHECK(alt.period_cv < 1e-3);
+  // A flow that dies out: the gap as before, Q = g (1 − 0.01 f t) while
+  // open, for 0.5 ≤ f t ≤ 13.1: the upward mean crossings (g = c) at
+  // f t = 1 … 13 bound 12 whole cycles, the k-th peak (f t = k + 5/4) (a + c)(1
+  // − 0.01 (k + 5/4)) up to a shift of order 1e−6. The six later against the
+  // six earlier: −0.06 (a + c), over the mean of all, (a + c)(1 − 0.0675)
+  std::vector<double> t12, g12, q12;
+  for (int k = int(0.5 / f / 1e-6); f * k * 1e-6 <= 13.1; ++k)
+  {
+    t12.push_back(k * 1e-6);
+    g12.push_back(a * std::sin(2 * M_PI * f * t12.back()) + c);
+    q12.push_back(std::max(0.0, g12.back()) * (1 - 0.01 * f * t12.back()));
+  }
+  const auto fade = cycle_stats(t12, g12, q12, 0.0);
+  REQUIRE(fade.cycles == 12);
+  CHECK(fade.q_peak_drift == Approx(-0.06 / (1 - 0.0675)).epsilon(1e-3));
+  CHECK(std::abs(fade.period_drift) < 1e-4);
 }
 
 TEST_CASE("Reduced model: stable below onset, self-sustained closing "

@@ -65,6 +65,24 @@ fsai::glottis::CycleStats fsai::glottis::cycle_stats(
       q += (x - m) * (x - m) / v.size();
     return std::array<double, 2>{m, m > 0 ? std::sqrt(q) / m : 0.0};
   };
+  // Later half against earlier half (the middle cycle of an odd count in
+  // neither)
+  auto drift = [](const std::vector<double>& v)
+  {
+    const std::size_t n = v.size(), h = n / 2;
+    double early = 0, late = 0, all = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      all += v[i] / n;
+      if (i < h)
+        early += v[i] / h;
+      if (i >= n - h)
+        late += v[i] / h;
+    }
+    return h > 0 and all != 0 ? (late - early) / all : 0.0;
+  };
+  s.q_peak_drift = drift(peaks);
+  s.period_drift = drift(periods);
   s.period_cv = mean_cv(periods)[1];
   const auto pk = mean_cv(peaks);
   s.q_peak_mean = pk[0];

@@ -8,7 +8,13 @@
 // closed-phase leakage (largest |Q| while closed, relative to the peak);
 // and how regular the cycles are: the coefficients of variation (standard
 // deviation over mean) of the cycle periods and of the per-cycle peak
-// flows (jitter- and shimmer-like; 0 for a limit cycle).
+// flows (jitter- and shimmer-like; 0 for a limit cycle); and whether the
+// window has settled: the drift of the per-cycle peak flow and period, the
+// mean of the later half of the cycles less that of the earlier half,
+// over the mean of all (0 on a limit cycle; a start-up transient that is
+// still dying out, or a slow drift, makes it nonzero — stop 35: the FE
+// closing cycle drifts by −2 % over [0.05, 0.1] s and −1 % over
+// [0.1, 0.2] s).
 #pragma once
 #include <vector>
 
@@ -26,6 +32,8 @@ struct CycleStats
   double period_cv = 0;     ///< CV of the cycle periods
   double q_peak_cv = 0;     ///< CV of the per-cycle peak flows
   double q_peak_mean = 0;   ///< mean of the per-cycle peak flows [m³/s]
+  double q_peak_drift = 0;  ///< drift of the per-cycle peak flows
+  double period_drift = 0;  ///< drift of the cycle periods
 };
 
 /// Factor of the subglottal pressure at time t when it ramps up smoothly

@@ -1,0 +1,138 @@
+#!/usr/bin/python3
+"""The closing cycle's peak glottal flow, cycle by cycle (stop 35).
+
+In t in [0.05, 0.1] s the peak flow of the closing cycle (ζ1 = ζ2 = 0.02,
+bench/glottis_closure_converged.py) swings by about ±5 % from cycle to
+cycle, and the three mesh levels of bench/glottis_fe_convergence.py
+(h_gap 0.035 / 0.025 / 0.0175 mm) compare single maxima or 7-cycle means
+of that swinging sequence. This script asks two questions of the runs:
+
+1. Is the swing numerical noise or a property of the coupled solution?
+   Each level's cycles are paired with the reference's (h_gap 0.035 mm,
+   Δt 1e-5) by their number after t = 30 ms (the k-th with the k-th, as
+   long as their starts lie within half a period: the finest mesh's period
+   is 1 % shorter, its cycles drift) and their peak flows compared pair by
+   pair. Noise would give ratios scattered as
+   widely as the swing; a mesh effect gives a steady ratio.
+2. Does the swing die out? The reference continued to 0.2 s (case
+   dt1_z02_c75_02s): the spread of the per-cycle peaks in successive 25 ms
+   windows, and the mean peak of each window.
+
+3. How long does the swing take to die out, and what does it do to the
+   statistics compared? The reduced model (--flow bernoulli, the same
+   fold, damping and Δt) runs 0.5 s in seconds: its per-cycle peaks in
+   the same windows against its settled value (the mean of the cycles
+   after 0.4 s). Its run goes to a temporary folder; its cycles are kept
+   in the CSV.
+
+Cycles run from one upward crossing of the half-gap g = 0.05 mm to the
+next (the gap swings from about −0.1 to 0.52 mm); the peak of a cycle is
+its largest Q.
+
+usage: bench/glottis_cycle_peaks.py [BUILD_DIR]
+writes bench/results/glottis_cycle_peaks.csv (every cycle of every run)
+"""
+import argparse
+import csv
+import os
+import subprocess
+import tempfile
+
+from benchlib import write_rows
+
+here = os.path.dirname(os.path.abspath(__file__))
+res = os.path.join(here, "results")
+ap = argparse.ArgumentParser()
+ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
+args = ap.parse_args()
+G_CROSS = 0.05e-3  # [m]
+T_START = 0.03     # [s]: the start-up overshoot is over (closing_converged's t_settle)
+REFERENCE = ("h 0.035 mm, dt 1e-5, to 0.2 s", "run_glottis_h035_dt1_z02_c75_02s")
+RUNS = (("h 0.035 mm, dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
+        ("h 0.035 mm, dt 5e-6", "run_glottis_h035_dt05_z02_c75"),
+        ("h 0.025 mm, dt 1e-5", "run_glottis_h025_dt1_z02_c75"),
+        ("h 0.025 mm, dt 0.7e-5", "run_glottis_h025_dt07_z02_c75"),
+        ("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75"),
+        ("h 0.025 mm, dt 0.7e-5, to 0.2 s", "run_glottis_h025_dt07_z02_c75_02s"))
+WINDOW = 0.025  # [s]: the long run's windows
+
+
+def cycles(run):
+    """(start [s], period [s], peak Q [m³/s]) of every whole cycle after T_START"""
+    path = os.path.join(res, run, "series.csv") if not os.path.isabs(run) else run
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        r = [(float(x["t_s"]), float(x["gap_m"]), float(x["Q_m3s"])) for x in csv.DictReader(f)]
+    up = [i for i in range(1, len(r)) if r[i - 1][0] > T_START and r[i - 1][1] < G_CROSS <= r[i][1]]
+    return [(r[a][0], r[b][0] - r[a][0], max(x[2] for x in r[a:b])) for a, b in zip(up, up[1:])]
+
+
+ref_name, ref_run = REFERENCE
+ref = cycles(ref_run)
+if not ref:
+    ref_name, ref_run = RUNS[0]
+    ref = cycles(ref_run)
+rows = []
+print(f"Per-cycle peak flow against the reference ({ref_name}), cycles paired by number:")
+print("| run | cycles paired | cycle starts [ms] | peak flow of each cycle [l/s] | against the reference, "
+      "each cycle | mean | range |")
+print("|---|---|---|---|---|---|---|")
+for name, run in (REFERENCE,) + RUNS:
+    c = cycles(run)
+    if not c:
+        continue
+    pairs = []
+    for k, (t, T, q) in enumerate(c):
+        paired = k < len(ref) and abs(ref[k][0] - t) < 0.5 * T
+        d = 100 * (q / ref[k][2] - 1) if paired else float("nan")
+        rows.append({"run": name, "cycle_start_s": t, "period_s": T, "q_peak_ls": 1e3 * q,
+                     "reference_cycle_start_s": ref[k][0] if paired else float("nan"),
+                     "change_from_reference_pct": d})
+        if paired and run != ref_run:
+            pairs.append((t, q, d))
+    if run == ref_run or not pairs:
+        continue
+    ds = [d for _, _, d in pairs]
+    print(f"| {name} | {len(pairs)} | " + " ".join(f"{1e3 * t:.1f}" for t, _, _ in pairs) + " | "
+          + " ".join(f"{1e3 * q:.3f}" for _, q, _ in pairs) + " | "
+          + " ".join(f"{d:+.1f}" for d in ds) + f" % | {sum(ds) / len(ds):+.2f} % | "
+          f"{min(ds):+.1f} … {max(ds):+.1f} % |")
+
+print(f"\nThe start-up swing of {ref_name}, {1e3 * WINDOW:g} ms windows:")
+print("| window [ms] | cycles | f0 | mean peak flow | spread of the peaks (max − min) / mean |")
+print("|---|---|---|---|---|")
+t0 = T_START
+while ref and t0 < ref[-1][0]:
+    w = [x for x in ref if t0 <= x[0] < t0 + WINDOW]
+    if w:
+        q = [x[2] for x in w]
+        mean = sum(q) / len(q)
+        f0 = len(w) / sum(x[1] for x in w)
+        print(f"| {1e3 * t0:.0f}–{1e3 * (t0 + WINDOW):.0f} | {len(w)} | {f0:.2f} Hz | {1e3 * mean:.4f} l/s | "
+              f"{100 * (max(q) - min(q)) / mean:.2f} % |")
+    t0 += WINDOW
+
+# 3. The reduced model of the same fold, long enough to settle
+BERNOULLI = ["--flow", "bernoulli", "--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+             "--duration", "0.5"]
+T_SETTLED = 0.4  # [s]
+exe = os.path.join(args.build, "demos", "fsai_glottis")
+if os.path.exists(exe):
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run([exe] + BERNOULLI + ["--output", tmp], check=True, stdout=subprocess.DEVNULL)
+        b = cycles(os.path.join(tmp, "series.csv"))
+    settled = [q for t, _, q in b if t >= T_SETTLED]
+    q_inf = sum(settled) / len(settled)
+    rows += [{"run": "bernoulli " + " ".join(BERNOULLI[2:]), "cycle_start_s": t, "period_s": T,
+              "q_peak_ls": 1e3 * q, "reference_cycle_start_s": float("nan"),
+              "change_from_reference_pct": 100 * (q / q_inf - 1)} for t, T, q in b]
+    print(f"\nThe reduced model, {' '.join(BERNOULLI)}: settled peak flow {1e3 * q_inf:.4f} l/s "
+          f"(mean of the {len(settled)} cycles after {T_SETTLED} s); windows against it:")
+    print("| window [s] | cycles | largest peak | mean of the cycle peaks | spread (max − min) |")
+    print("|---|---|---|---|---|")
+    for t0, t1 in ((0.05, 0.1), (0.1, 0.15), (0.15, 0.2), (0.2, 0.25), (0.25, 0.3), (0.3, 0.4)):
+        q = [x[2] for x in b if t0 <= x[0] < t1]
+        print(f"| [{t0}, {t1}] | {len(q)} | {100 * (max(q) / q_inf - 1):+.2f} % | "
+              f"{100 * (sum(q) / len(q) / q_inf - 1):+.2f} % | {100 * (max(q) - min(q)) / q_inf:.2f} % |")
+write_rows(os.path.join(res, "glottis_cycle_peaks.csv"), rows)
