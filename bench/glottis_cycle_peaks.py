@@ -5,19 +5,18 @@ In t in [0.05, 0.1] s the peak flow of the closing cycle (ζ1 = ζ2 = 0.02,
 bench/glottis_closure_converged.py) swings by about ±5 % from cycle to
 cycle, and the three mesh levels of bench/glottis_fe_convergence.py
 (h_gap 0.035 / 0.025 / 0.0175 mm) compare single maxima or 7-cycle means
-of that swinging sequence. This script asks two questions of the runs:
+of that swinging sequence. This script asks three questions of the runs:
 
 1. Is the swing numerical noise or a property of the coupled solution?
    Each level's cycles are paired with the reference's (h_gap 0.035 mm,
    Δt 1e-5) by their number after t = 30 ms (the k-th with the k-th, as
    long as their starts lie within half a period: the finest mesh's period
    is 1 % shorter, its cycles drift) and their peak flows compared pair by
-   pair. Noise would give ratios scattered as
-   widely as the swing; a mesh effect gives a steady ratio.
-2. Does the swing die out? The reference continued to 0.2 s (case
+   pair. Noise would give ratios scattered as widely as the swing; a mesh
+   effect gives a steady ratio.
+2. Does the FE cycle settle? The reference continued to 0.2 s (case
    dt1_z02_c75_02s): the spread of the per-cycle peaks in successive 25 ms
    windows, and the mean peak of each window.
-
 3. How long does the swing take to die out, and what does it do to the
    statistics compared? The reduced model (--flow bernoulli, the same
    fold, damping and Δt) runs 0.5 s in seconds: its per-cycle peaks in
