@@ -2,6 +2,13 @@
 import csv
 
 
+def read_float_rows(path):
+    """A CSV file of numbers (a series.csv, a summary table) as a list of
+    dicts column -> float."""
+    with open(path) as f:
+        return [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
+
+
 def write_rows(path, rows):
     """Write a list of dicts (same keys, in order) as a CSV file."""
     with open(path, "w", newline="") as f:

@@ -29,10 +29,11 @@ usage: bench/glottis_closure_converged.py [BUILD_DIR] [--run CASE,..] [--t_settl
 writes bench/results/glottis_closure_converged.csv
 """
 import argparse
-import csv
 import json
 import os
 import subprocess
+
+from benchlib import read_float_rows, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -151,8 +152,7 @@ for case, (duration, opts) in CASES.items():
     out = folder(case)
     if not os.path.exists(os.path.join(out, "series.csv")):
         continue
-    with open(os.path.join(out, "series.csv")) as f:
-        r = [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
+    r = read_float_rows(os.path.join(out, "series.csv"))
     wins, t0 = [], 0.0
     # (not a window of a step or two: a run of Δt 0.7e-5 ends at 0.100002 s)
     while t0 < r[-1]["t_s"] - 1e-4:
@@ -181,7 +181,4 @@ for case, (duration, opts) in CASES.items():
                  "late_max_gap_mm": 1e3 * max(w[2] for w in late) if late else "",
                  "contact_windows_after_settle": sum(contact), "windows_after_settle": len(contact),
                  "end": end})
-with open(os.path.join(res, "glottis_closure_converged.csv"), "w", newline="") as f:
-    wr = csv.DictWriter(f, fieldnames=list(rows[0]))
-    wr.writeheader()
-    wr.writerows(rows)
+write_rows(os.path.join(res, "glottis_closure_converged.csv"), rows)

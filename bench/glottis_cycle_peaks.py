@@ -32,12 +32,11 @@ usage: bench/glottis_cycle_peaks.py [BUILD_DIR]
 writes bench/results/glottis_cycle_peaks.csv (every cycle of every run)
 """
 import argparse
-import csv
 import os
 import subprocess
 import tempfile
 
-from benchlib import write_rows
+from benchlib import read_float_rows, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 res = os.path.join(here, "results")
@@ -58,11 +57,10 @@ WINDOW = 0.025  # [s]: the long run's windows
 
 def cycles(run):
     """(start [s], period [s], peak Q [m³/s]) of every whole cycle after T_START"""
-    path = os.path.join(res, run, "series.csv") if not os.path.isabs(run) else run
+    path = os.path.join(res, run, "series.csv")  # (run: a folder in res, or absolute)
     if not os.path.exists(path):
         return []
-    with open(path) as f:
-        r = [(float(x["t_s"]), float(x["gap_m"]), float(x["Q_m3s"])) for x in csv.DictReader(f)]
+    r = [(x["t_s"], x["gap_m"], x["Q_m3s"]) for x in read_float_rows(path)]
     up = [i for i in range(1, len(r)) if r[i - 1][0] > T_START and r[i - 1][1] < G_CROSS <= r[i][1]]
     return [(r[a][0], r[b][0] - r[a][0], max(x[2] for x in r[a:b])) for a, b in zip(up, up[1:])]
 
@@ -120,7 +118,7 @@ exe = os.path.join(args.build, "demos", "fsai_glottis")
 if os.path.exists(exe):
     with tempfile.TemporaryDirectory() as tmp:
         subprocess.run([exe] + BERNOULLI + ["--output", tmp], check=True, stdout=subprocess.DEVNULL)
-        b = cycles(os.path.join(tmp, "series.csv"))
+        b = cycles(tmp)
     settled = [q for t, _, q in b if t >= T_SETTLED]
     q_inf = sum(settled) / len(settled)
     rows += [{"run": "bernoulli " + " ".join(BERNOULLI[2:]), "cycle_start_s": t, "period_s": T,

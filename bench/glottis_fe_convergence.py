@@ -46,11 +46,10 @@ is not settled).
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
                                           and glottis_fe_three_levels.csv)
 """
-import csv
 import math
 import os
 
-from benchlib import write_rows
+from benchlib import read_float_rows, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 res = os.path.join(here, "results")
@@ -114,8 +113,7 @@ LEVEL_WINDOWS = ((0.03, 0.06), (0.05, 0.1))
 
 
 def stats(run, t0, t1):
-    with open(os.path.join(res, run, "series.csv")) as f:
-        r = [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
+    r = read_float_rows(os.path.join(res, run, "series.csv"))
     # (a run's last step may fall short of t1 by less than its Δt)
     if r[-1]["t_s"] < t1 - 1e-5:
         return None
