@@ -12,7 +12,6 @@ import csv
 import json
 import os
 import subprocess
-import sys
 
 import matplotlib
 matplotlib.use("Agg")

@@ -12,7 +12,6 @@ usage: bench/fsi_coupling.py [BUILD_DIR] [--t_end 0.3] [--dt 0.005]
 """
 import argparse
 import csv
-import json
 import os
 import subprocess
 import time

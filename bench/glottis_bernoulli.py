@@ -12,13 +12,12 @@ Writes bench/results/glottis_bernoulli.csv and glottis_bernoulli.png.
 
 usage: bench/glottis_bernoulli.py [BUILD_DIR]
 """
-import csv
 import json
 import os
 import subprocess
 import sys
 
-from benchlib import print_markdown_table, write_rows
+from benchlib import print_markdown_table, read_float_rows, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "build")
@@ -30,8 +29,7 @@ pressures = [400, 500, 600, 700, 800, 900, 1000, 1200, 1600, 2000, 2500]
 subprocess.run([exe, "--flow", "bernoulli", "--onset_sweep",
                 ",".join(str(p) for p in range(100, 2001, 10)), "--output", tmp],
                check=True, stdout=subprocess.DEVNULL)
-with open(os.path.join(tmp, "onset.csv")) as f:
-    lin = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+lin = read_float_rows(os.path.join(tmp, "onset.csv"))
 onset = next((r for r in lin if r["growth_rate_1_per_s"] > 0), None)
 print(f"linear onset: p_sub = {onset['p_sub_Pa']:.0f} Pa at {onset['frequency_hz']:.1f} Hz"
       if onset else "no onset below 2000 Pa")

@@ -122,6 +122,10 @@ CASES = {
     # run_restart_02s.log), for the settled window
     "h025_dt07_z02_c75_02s": (0.2, CLOSING + ["--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
                                              "--dt", "0.7e-5", "--checkpoint-every", "2000"]),
+    # stop 36: the reference's time-step check (Δt/2) to 0.2 s, for the
+    # late window [0.13, 0.2] s (dt05_z02_c75 above ran the first 0.06 s)
+    "dt05_z02_c75_02s": (0.2, ["--dt", "5e-6", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
+                               "--checkpoint-every", "4000"]),
 }
 FOLDER = {"default": "run_glottis_conv_fine_01_load",
           "h025_dt1_z02_c75": "run_glottis_h025_dt1_z02_c75",

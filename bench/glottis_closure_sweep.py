@@ -24,6 +24,8 @@ import json
 import os
 import subprocess
 
+from benchlib import read_float_rows
+
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
 ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
@@ -47,8 +49,7 @@ def series_stats(run, g_min, t_end, t_from=0.01):
     complete cycles for the demo's own statistics): peak flow, contact
     episodes, max |Q| in contact (g <= 0) and while 0 < g <= g_min, over
     the peak"""
-    with open(os.path.join(run, "series.csv")) as f:
-        r = [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
+    r = read_float_rows(os.path.join(run, "series.csv"))
     w = [x for x in r if t_from <= x["t_s"] <= t_end + 1e-12]
     qp = max(x["Q_m3s"] for x in w)
     contact = [abs(x["Q_m3s"]) for x in w if x["gap_m"] <= 0]

@@ -41,7 +41,8 @@ the 0.025 mm mesh's cycle at Δt 1e-5 and 0.7e-5 agree within 0.1-0.3 %).
 Stop 35 adds the window t in [0.13, 0.2] s ("late": the fold's motion has
 settled, the flow still drifts slowly) for the reference and the 0.025 mm
 level run to 0.2 s (bench/glottis_cycle_peaks.py shows why [0.05, 0.1] s
-is not settled).
+is not settled). Stop 36 adds the reference's Δt/2 (5e-6) run to 0.2 s to
+that window (case dt05_z02_c75_02s of glottis_closure_converged.py).
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
                                           and glottis_fe_three_levels.csv)
@@ -103,7 +104,9 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
 # fold's motion is from 0.13 s on, though the flow still drifts. The
 # reference and the 0.025 mm level continued to 0.2 s
 RUNS["closing, h 0.035 mm, late"] = (("dt 1e-5", "run_glottis_h035_dt1_z02_c75_02s"),
-                                     ("h 0.025 mm, dt 0.7e-5", "run_glottis_h025_dt07_z02_c75_02s"))
+                                     ("h 0.025 mm, dt 0.7e-5", "run_glottis_h025_dt07_z02_c75_02s"),
+                                     # stop 36: the reference's Δt/2 to 0.2 s
+                                     ("dt 5e-6", "run_glottis_h035_dt05_z02_c75_02s"))
 RUNS["closing, h 0.035 mm"] += (("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75"),)
 # the three levels (h_gap [mm], run) for the observed order, coarse to fine,
 # and the windows they are compared in

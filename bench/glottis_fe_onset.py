@@ -18,11 +18,12 @@ usage: bench/glottis_fe_onset.py [BUILD_DIR] [--pressures 300,450,600]
 writes bench/results/glottis_fe_onset.csv
 """
 import argparse
-import csv
 import json
 import math
 import os
 import subprocess
+
+from benchlib import read_float_rows, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -62,8 +63,7 @@ for ps in [float(p) for p in args.pressures.split(",")]:
                str(args.duration), "--write_every", "0", "--output", run]
         print(" ".join(cmd), flush=True)
         subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL)
-    with open(os.path.join(run, "series.csv")) as f:
-        ser = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    ser = read_float_rows(os.path.join(run, "series.csv"))
     t = [r["t_s"] for r in ser]
     g = [r["gap_m"] for r in ser]
     rate, n = growth_rate(t, g, args.t_from)
@@ -78,10 +78,7 @@ for ps in [float(p) for p in args.pressures.split(",")]:
                  "amplitude_ratio": late / early, "growth_rate_1_per_s": rate,
                  "half_swings": n, "f0_hz": s["f0_hz"], "wall_s": s["wall_s"]})
     print(rows[-1], flush=True)
-with open(os.path.join(out, "glottis_fe_onset.csv"), "w", newline="") as f:
-    w = csv.DictWriter(f, fieldnames=list(rows[0]))
-    w.writeheader()
-    w.writerows(rows)
+write_rows(os.path.join(out, "glottis_fe_onset.csv"), rows)
 grow = [r["p_sub_Pa"] for r in rows if r["amplitude_ratio"] >= 1]
 decay = [r["p_sub_Pa"] for r in rows if r["amplitude_ratio"] < 1]
 print(f"FE onset between {max(decay) if decay else '?'} Pa (decays) and "

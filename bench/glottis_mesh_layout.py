@@ -27,6 +27,8 @@ import json
 import os
 import subprocess
 
+from benchlib import read_float_rows
+
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
 ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
@@ -114,8 +116,8 @@ for r in rows:
 def cycle_peaks(folder, t_from=0.03):
     """Peak flow [l/s] of each cycle after t_from (cycles from one opening,
     the half-gap crossing 0 upwards, to the next)"""
-    with open(os.path.join(res, folder, "series.csv")) as f:
-        r = [(float(x["t_s"]), float(x["gap_m"]), float(x["Q_m3s"])) for x in csv.DictReader(f)]
+    r = [(x["t_s"], x["gap_m"], x["Q_m3s"])
+         for x in read_float_rows(os.path.join(res, folder, "series.csv"))]
     ups = [r[i][0] for i in range(1, len(r)) if r[i - 1][1] <= 0 < r[i][1] and r[i][0] > t_from]
     return [1e3 * max(q for t, _, q in r if a <= t < b) for a, b in zip(ups, ups[1:])]
 

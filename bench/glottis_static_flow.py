@@ -29,6 +29,8 @@ import math
 import os
 import subprocess
 
+from benchlib import read_float_rows
+
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
 ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
@@ -75,8 +77,7 @@ for gap_mm, dt, h_list in cases:
                 continue
         with open(os.path.join(run, "summary.json")) as f:
             s = json.load(f)
-        with open(os.path.join(run, "series.csv")) as f:
-            r = [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
+        r = read_float_rows(os.path.join(run, "series.csv"))
         t_end = r[-1]["t_s"]
         q = [x["Q_m3s"] for x in r if x["t_s"] >= 0.6 * t_end]
         q_mean = sum(q) / len(q)

@@ -10,8 +10,9 @@ bench/fsi_accuracy.py uses the same functions.
 usage: bench/turek_hron_stats.py RUN_DIR [--case FSI2|FSI3] [--window 2.0]
 """
 import argparse
-import csv
 import os
+
+from benchlib import read_float_rows
 
 # (mean, amplitude, frequency) per quantity
 REF = {
@@ -23,8 +24,7 @@ REF = {
 
 
 def load_series(run):
-    with open(os.path.join(run, "series.csv")) as f:
-        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    return read_float_rows(os.path.join(run, "series.csv"))
 
 
 def periodic_stats(series, key, window):

@@ -48,8 +48,8 @@ public:
 
   /// Restart: read DIR/checkpoint.json and its fields (on every rank, from
   /// all the ranks that wrote them). InputError if there is none or a
-  /// parameter other than output, restart, checkpoint-every, duration and
-  /// debug.* differs (named in the message).
+  /// parameter other than output, restart, checkpoint-every, duration,
+  /// write_every and debug.* differs (named in the message).
   void read();
   /// The checkpoint's JSON (after read())
   const nlohmann::json& meta() const { return _meta; }

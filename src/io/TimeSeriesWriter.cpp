@@ -7,7 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/io/XDMFFile.h>
+#include <filesystem>
 #include <hdf5.h>
+#include <limits>
 #include <pugixml.hpp>
 #include <stdexcept>
 
@@ -25,6 +27,18 @@ fsai::io::TimeSeriesWriter::TimeSeriesWriter(const std::string& path,
     if (f->function_space()->mesh() != mesh)
       throw std::runtime_error("TimeSeriesWriter '" + path
                                + "': fields live on different meshes");
+  }
+  if (!std::isnan(continue_after))
+  {
+    // A restart of a run that wrote no series (--write_every 0 then) starts
+    // one at the restart; rank 0 decides, so that all ranks agree
+    int rank = 0, exists = 0;
+    MPI_Comm_rank(mesh->comm(), &rank);
+    if (rank == 0)
+      exists = std::filesystem::exists(path);
+    MPI_Bcast(&exists, 1, MPI_INT, 0, mesh->comm());
+    if (!exists)
+      continue_after = std::numeric_limits<double>::quiet_NaN();
   }
   if (std::isnan(continue_after))
   {

@@ -31,7 +31,8 @@ public:
   /// @param[in] path File name (.xdmf; the .h5 goes beside it)
   /// @param[in] fields Fields written at every step, named by their `name`
   /// @param[in] continue_after Restart: keep the existing series' steps up
-  ///   to this time and append after them (NaN: a new series)
+  ///   to this time and append after them (NaN, or no file at `path`: a
+  ///   new series)
   TimeSeriesWriter(const std::string& path, std::vector<Field> fields,
                    double continue_after
                    = std::numeric_limits<double>::quiet_NaN());

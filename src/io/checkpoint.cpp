@@ -219,8 +219,8 @@ fsai::io::ParameterChanges fsai::io::compare_parameters(nlohmann::json saved,
                                                         nlohmann::json current)
 {
   for (auto* j : {&saved, &current})
-    for (const char* key :
-         {"output", "restart", "checkpoint-every", "duration", "debug"})
+    for (const char* key : {"output", "restart", "checkpoint-every", "duration",
+                            "write_every", "debug"})
       j->erase(key);
   ParameterChanges out;
   for (const auto& op : nlohmann::json::diff(saved, current))

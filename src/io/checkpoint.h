@@ -74,7 +74,8 @@ void on_every_rank(MPI_Comm comm, F&& restore)
 
 /// How a restart's parameters differ from the checkpointed run's, as JSON
 /// pointers ("/fluid/rho"). Parameters that may differ (output, restart and
-/// checkpoint options, the simulated duration) are left out.
+/// checkpoint options, the simulated duration, the XDMF output interval
+/// `write_every`: none of them changes the solution) are left out.
 struct ParameterChanges
 {
   std::vector<std::string> changed; ///< in both, different values: an error
