@@ -9,6 +9,12 @@ def read_float_rows(path):
         return [{k: float(v) for k, v in x.items()} for x in csv.DictReader(f)]
 
 
+def upward_crossings(values, level):
+    """Indices i where values rises through level: values[i - 1] < level <=
+    values[i] (the starts of a waveform's cycles)."""
+    return [i for i in range(1, len(values)) if values[i - 1] < level <= values[i]]
+
+
 def write_rows(path, rows):
     """Write a list of dicts (same keys, in order) as a CSV file."""
     with open(path, "w", newline="") as f:

@@ -36,7 +36,7 @@ import os
 import subprocess
 import tempfile
 
-from benchlib import read_float_rows, write_rows
+from benchlib import read_float_rows, upward_crossings, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 res = os.path.join(here, "results")
@@ -62,7 +62,7 @@ def cycles(run):
     if not os.path.exists(path):
         return []
     r = [(x["t_s"], x["gap_m"], x["Q_m3s"]) for x in read_float_rows(path)]
-    up = [i for i in range(1, len(r)) if r[i - 1][0] > T_START and r[i - 1][1] < G_CROSS <= r[i][1]]
+    up = [i for i in upward_crossings([x[1] for x in r], G_CROSS) if r[i - 1][0] > T_START]
     return [(r[a][0], r[b][0] - r[a][0], max(x[2] for x in r[a:b])) for a, b in zip(up, up[1:])]
 
 

@@ -38,7 +38,7 @@ import shutil
 import subprocess
 
 import numpy as np
-from benchlib import read_float_rows, write_rows
+from benchlib import read_float_rows, upward_crossings, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -85,20 +85,21 @@ for run in ("run_glottis_h035_dt1_z02_c75_02s", "run_glottis_h025_dt07_z02_c75_0
     if not os.path.exists(path):
         continue
     r = read_float_rows(path)
-    up = [b["t_s"] for a, b in zip(r, r[1:]) if a["gap_m"] < G_OPEN <= b["gap_m"] and b["t_s"] > 0.09]
+    up = [r[i]["t_s"] for i in upward_crossings([x["gap_m"] for x in r], G_OPEN)
+          if r[i]["t_s"] > 0.09]
     print(f"{run}, cycle by cycle:")
     print("| cycle from [s] | largest half-gap [mm] | mean open half-gap [mm] | mean Q [l/s] "
           "| mean Q / mean open half-gap [m²/s] | mean h [mm] | mean lift [N] |")
     print("|---|---|---|---|---|---|---|")
     for a, b in list(zip(up, up[1:]))[::2]:
         c = [x for x in r if a <= x["t_s"] < b]
+        g_max = max(x["gap_m"] for x in c)
         g_open = sum(max(x["gap_m"], 0) for x in c) / len(c)
         q = sum(x["Q_m3s"] for x in c) / len(c)
-        print(f"| {a:.4f} | {1e3 * max(x['gap_m'] for x in c):.4f} | {1e3 * g_open:.4f} | "
+        print(f"| {a:.4f} | {1e3 * g_max:.4f} | {1e3 * g_open:.4f} | "
               f"{1e3 * q:.4f} | {q / g_open:.4f} | {1e3 * sum(x['h_m'] for x in c) / len(c):.4f} | "
               f"{sum(x['lift_N'] for x in c) / len(c):.5f} |")
-        cycle_rows.append({"run": run, "cycle_start_s": a,
-                           "max_half_gap_mm": 1e3 * max(x["gap_m"] for x in c),
+        cycle_rows.append({"run": run, "cycle_start_s": a, "max_half_gap_mm": 1e3 * g_max,
                            "mean_open_half_gap_mm": 1e3 * g_open, "mean_q_ls": 1e3 * q,
                            "q_per_open_gap_m2s": q / g_open})
     print()
@@ -109,17 +110,15 @@ for name in CASES:
     t_ck = checkpoint_time(out)
     r = read_float_rows(os.path.join(out, "series.csv"))
     # The period: the mean of the last 3 cycles before the checkpoint
-    up = [b["t_s"] for a, b in zip(r, r[1:])
-          if a["gap_m"] < G_OPEN <= b["gap_m"] and b["t_s"] <= t_ck]
+    up = [r[i]["t_s"] for i in upward_crossings([x["gap_m"] for x in r], G_OPEN)
+          if r[i]["t_s"] <= t_ck]
     t0, t1 = t_ck, t_ck + (up[-1] - up[-4]) / 3
     if r[-1]["t_s"] < t1:
         raise SystemExit(f"{name}: no full period after t = {t_ck:.4f} s (run with --run)")
     cyc = [x for x in r if t0 < x["t_s"] <= t1]
     npz = os.path.join(out, "cycle_mean.npz")
-    xdmf = os.path.join(out, "flow.xdmf")
-    if not os.path.exists(npz) or os.path.getmtime(npz) < os.path.getmtime(xdmf):
-        subprocess.run(["pvpython", os.path.join(here, "pv_cycle_mean.py"), xdmf,
-                        str(t0), str(t1), npz], check=True)
+    subprocess.run(["pvpython", os.path.join(here, "pv_cycle_mean.py"),
+                    os.path.join(out, "flow.xdmf"), str(t0), str(t1), npz], check=True)
     m = dict(np.load(npz))
     m["Q"] = np.mean([x["Q_m3s"] for x in cyc])
     m["Q_peak"] = max(x["Q_m3s"] for x in cyc)
