@@ -126,12 +126,23 @@ CASES = {
     # late window [0.13, 0.2] s (dt05_z02_c75 above ran the first 0.06 s)
     "dt05_z02_c75_02s": (0.2, ["--dt", "5e-6", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
                                "--checkpoint-every", "4000"]),
+    # stops 36-37: h0175_dt07_z02_c75 continued from its step-14000
+    # checkpoint (t = 0.098 s) to 0.2 s in a copy of its folder (--restart,
+    # stopped and continued twice: logs run_restart_02s*.log), for the late
+    # window of all three levels
+    "h0175_dt07_z02_c75_02s": (0.2, CLOSING + ["--fe.h_gap", "0.0175e-3", "--fe.h_far", "0.175e-3",
+                                               "--dt", "0.7e-5", "--checkpoint-every", "1000"]),
+    # stop 37: the reference continued from 0.2 to 0.5 s (a copy of
+    # dt1_z02_c75_02s's folder, --restart, log run_restart_05s.log): does
+    # the cycle reach a limit cycle? (bench/glottis_limit_cycle.py)
+    "dt1_z02_c75_05s": (0.5, CLOSING + ["--checkpoint-every", "5000"]),
 }
 FOLDER = {"default": "run_glottis_conv_fine_01_load",
           "h025_dt1_z02_c75": "run_glottis_h025_dt1_z02_c75",
           "h025_dt07_z02_c75": "run_glottis_h025_dt07_z02_c75",
           "h0175_dt07_z02_c75": "run_glottis_h0175_dt07_z02_c75",
-          "h025_dt07_z02_c75_02s": "run_glottis_h025_dt07_z02_c75_02s"}
+          "h025_dt07_z02_c75_02s": "run_glottis_h025_dt07_z02_c75_02s",
+          "h0175_dt07_z02_c75_02s": "run_glottis_h0175_dt07_z02_c75_02s"}
 
 
 def folder(case):

@@ -43,6 +43,8 @@ settled, the flow still drifts slowly) for the reference and the 0.025 mm
 level run to 0.2 s (bench/glottis_cycle_peaks.py shows why [0.05, 0.1] s
 is not settled). Stop 36 adds the reference's Δt/2 (5e-6) run to 0.2 s to
 that window (case dt05_z02_c75_02s of glottis_closure_converged.py).
+Stop 37 adds the finest level run to 0.2 s (case h0175_dt07_z02_c75_02s)
+to that window, and the three levels' observed order in it.
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
                                           and glottis_fe_three_levels.csv)
@@ -106,13 +108,19 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
 RUNS["closing, h 0.035 mm, late"] = (("dt 1e-5", "run_glottis_h035_dt1_z02_c75_02s"),
                                      ("h 0.025 mm, dt 0.7e-5", "run_glottis_h025_dt07_z02_c75_02s"),
                                      # stop 36: the reference's Δt/2 to 0.2 s
-                                     ("dt 5e-6", "run_glottis_h035_dt05_z02_c75_02s"))
+                                     ("dt 5e-6", "run_glottis_h035_dt05_z02_c75_02s"),
+                                     # stop 37: the finest level to 0.2 s
+                                     ("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75_02s"))
 RUNS["closing, h 0.035 mm"] += (("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75"),)
 # the three levels (h_gap [mm], run) for the observed order, coarse to fine,
 # and the windows they are compared in
 LEVELS = ((0.035, "run_glottis_h035_dt1_z02_c75"), (0.025, "run_glottis_h025_dt07_z02_c75"),
           (0.0175, "run_glottis_h0175_dt07_z02_c75"))
-LEVEL_WINDOWS = ((0.03, 0.06), (0.05, 0.1))
+# stop 37: the three levels continued to 0.2 s, compared late in the run as
+# well
+LEVELS_02S = ((0.035, "run_glottis_h035_dt1_z02_c75_02s"), (0.025, "run_glottis_h025_dt07_z02_c75_02s"),
+              (0.0175, "run_glottis_h0175_dt07_z02_c75_02s"))
+LEVEL_WINDOWS = ((0.03, 0.06, LEVELS), (0.05, 0.1, LEVELS), (0.13, 0.2, LEVELS_02S))
 
 
 def stats(run, t0, t1):
@@ -198,9 +206,9 @@ print("| window | quantity | 0.035 mm | 0.025 mm | 0.0175 mm | change 0.035→0.
       "| observed order p | extrapolated | GCI of 0.0175 mm | 0.025 mm from extrapolated |")
 print("|---|---|---|---|---|---|---|---|---|---|---|")
 level_rows = []
-for t0, t1 in LEVEL_WINDOWS:
+for t0, t1, levels in LEVEL_WINDOWS:
     st = []
-    for h, run in LEVELS:
+    for h, run in levels:
         if not os.path.exists(os.path.join(res, run, "series.csv")):
             break
         s = stats(run, t0, t1)
@@ -210,7 +218,7 @@ for t0, t1 in LEVEL_WINDOWS:
     if len(st) < 3:
         print(f"| [{t0}, {t1}] s | (a level does not reach {t1} s yet) |")
         continue
-    hs = [h for h, _ in LEVELS]
+    hs = [h for h, _ in levels]
     for name, k, scale, unit in (("f0", 0, 1.0, "Hz"), ("peak flow", 1, 1e3, "l/s"),
                                  ("mean cycle peak", 5, 1e3, "l/s")):
         phi = [scale * x[k] for x in st]
