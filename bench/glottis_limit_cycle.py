@@ -54,6 +54,7 @@ WINDOW = 0.025      # [s]
 SETTLED = 0.005     # window means within 0.5 % of the last window's
 MIN_FIT = 8         # cycles: fewer are not fitted
 T_SHORT = 0.2       # [s]: the runs of every level reach this
+TAUS = np.geomspace(0.005, 2.0, 400)  # [s]: the time constants the fit scans
 RUNS = (("h 0.035 mm, dt 1e-5, to 0.5 s", "run_glottis_h035_dt1_z02_c75_05s"),
         ("h 0.035 mm, dt 5e-6, to 0.2 s", "run_glottis_h035_dt05_z02_c75_02s"),
         ("h 0.025 mm, dt 0.7e-5, to 0.2 s", "run_glottis_h025_dt07_z02_c75_02s"),
@@ -104,14 +105,14 @@ def fit_exponential(t, y):
     scanned (the problem is linear in y∞ and A for a given τ). τ = inf when
     the best fit is a straight line (no approach seen)"""
     best = None
-    for tau in np.geomspace(0.005, 2.0, 400):
+    for tau in TAUS:
         m = np.column_stack([np.ones_like(t), np.exp(-(t - t[0]) / tau)])
         c, *_ = np.linalg.lstsq(m, y, rcond=None)
         err = np.sum((m @ c - y) ** 2)
         if best is None or err < best[0]:
             best = (err, c[0], c[1], tau)
     _, y_inf, a, tau = best
-    if tau >= 2.0 * 0.99:
+    if tau == TAUS[-1]:
         return float("nan"), a, float("inf")
     return y_inf, a, tau
 
