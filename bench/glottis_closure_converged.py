@@ -186,6 +186,10 @@ for case, (duration, opts) in CASES.items():
             err = [x.strip() for x in f if "error:" in x]
         if err:
             end = err[0].split("error:", 1)[1].split("[")[0].strip()
+    if end == "completed" and r[-1]["t_s"] < duration - 1e-4:
+        # stopped without an error (h0175_dt07_z02_c75_02s: its checkpoint
+        # was lost at 0.155 s); its summary.json is the run it continued
+        end, f0 = f"stopped at t = {r[-1]['t_s']:.4f} s", ""
     verdict = ("every window" if contact and all(contact) else
                "none" if not any(contact) else f"{sum(contact)} of {len(contact)} windows")
     print(f"| {case} | {' '.join(opts) or '(defaults: 1200 Pa, g0 0.2 mm, zeta 0.05)'} | "

@@ -32,6 +32,7 @@ usage: bench/glottis_cycle_peaks.py [BUILD_DIR]
 writes bench/results/glottis_cycle_peaks.csv (every cycle of every run)
 """
 import argparse
+import math
 import os
 import subprocess
 import tempfile
@@ -55,6 +56,9 @@ RUNS = (("h 0.035 mm, dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
         ("h 0.035 mm, dt 5e-6, to 0.2 s", "run_glottis_h035_dt05_z02_c75_02s"),
         ("h 0.0175 mm, dt 0.7e-5, to 0.2 s", "run_glottis_h0175_dt07_z02_c75_02s"))
 WINDOW = 0.025  # [s]: the long run's windows
+# stop 38: the cycles that start in [0.1, 0.15) s, which every run to 0.2 s
+# completes (the finest level's ended at 0.155 s)
+LATE = (0.1, 0.15)  # [s]
 
 
 def cycles(run):
@@ -97,6 +101,24 @@ for name, run in (REFERENCE,) + RUNS:
           + " ".join(f"{1e3 * q:.3f}" for _, q, _ in pairs) + " | "
           + " ".join(f"{d:+.1f}" for d in ds) + f" % | {sum(ds) / len(ds):+.2f} % | "
           f"{min(ds):+.1f} … {max(ds):+.1f} % |")
+
+print(f"\nThe same cycles late in the run (those starting in [{LATE[0]}, {LATE[1]}) s), against the reference:")
+print("| run | cycles | f0 = cycles / their duration | mean of the cycle peaks | f0 change | mean peak change "
+      "| cycle-to-cycle: peaks (max − min) / mean | period CV |")
+print("|---|---|---|---|---|---|---|---|")
+late_ref = None
+for name, run in (REFERENCE,) + RUNS:
+    w = [x for x in cycles(run) if LATE[0] <= x[0] < LATE[1]]
+    if "to 0.2 s" not in name or not w:
+        continue
+    f0 = len(w) / sum(x[1] for x in w)
+    q = [x[2] for x in w]
+    qm = sum(q) / len(q)
+    tm = 1 / f0
+    cv = math.sqrt(sum((x[1] - tm) ** 2 for x in w) / len(w)) / tm
+    late_ref = late_ref or (f0, qm)
+    print(f"| {name} | {len(w)} | {f0:.2f} Hz | {1e3 * qm:.4f} l/s | {100 * (f0 / late_ref[0] - 1):+.2f} % | "
+          f"{100 * (qm / late_ref[1] - 1):+.2f} % | {100 * (max(q) - min(q)) / qm:.2f} % | {100 * cv:.2f} % |")
 
 print(f"\nThe start-up swing of {ref_name}, {1e3 * WINDOW:g} ms windows:")
 print("| window [ms] | cycles | f0 | mean peak flow | spread of the peaks (max − min) / mean |")

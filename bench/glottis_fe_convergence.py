@@ -44,7 +44,11 @@ level run to 0.2 s (bench/glottis_cycle_peaks.py shows why [0.05, 0.1] s
 is not settled). Stop 36 adds the reference's Δt/2 (5e-6) run to 0.2 s to
 that window (case dt05_z02_c75_02s of glottis_closure_converged.py).
 Stop 37 adds the finest level run to 0.2 s (case h0175_dt07_z02_c75_02s)
-to that window, and the three levels' observed order in it.
+to that window, and the three levels' observed order in it. That run ended
+at t = 0.155 s (its checkpoint was lost with the machine, stop 38), so
+stop 38 adds the window t in [0.13, 0.155] s, the part of the late window
+that every level reaches (3-4 cycles; bench/glottis_cycle_peaks.py pairs
+its cycles one by one).
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
                                           and glottis_fe_three_levels.csv)
@@ -59,7 +63,8 @@ res = os.path.join(here, "results")
 WINDOWS = {"growing": (0.025, 0.05), "limit cycle": (0.05, 0.1),
            "h 0.035 mm": (0.05, 0.1), "closing, h 0.035 mm": (0.03, 0.06),
            "closing, h 0.035 mm, settled": (0.05, 0.1),
-           "closing, h 0.035 mm, late": (0.13, 0.2)}
+           "closing, h 0.035 mm, late": (0.13, 0.2),
+           "closing, h 0.035 mm, late to 0.155 s": (0.13, 0.155)}
 RUNS = {"growing": (("default", "run_glottis_fe_default"),
                     ("dt/2", "run_glottis_conv_dt1e-5"),
                     ("h/1.43", "run_glottis_conv_fine")),
@@ -111,6 +116,8 @@ RUNS["closing, h 0.035 mm, late"] = (("dt 1e-5", "run_glottis_h035_dt1_z02_c75_0
                                      ("dt 5e-6", "run_glottis_h035_dt05_z02_c75_02s"),
                                      # stop 37: the finest level to 0.2 s
                                      ("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75_02s"))
+# stop 38: the finest level stopped at 0.155 s; the late window cut there
+RUNS["closing, h 0.035 mm, late to 0.155 s"] = RUNS["closing, h 0.035 mm, late"]
 RUNS["closing, h 0.035 mm"] += (("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75"),)
 # the three levels (h_gap [mm], run) for the observed order, coarse to fine,
 # and the windows they are compared in
@@ -120,7 +127,7 @@ LEVELS = ((0.035, "run_glottis_h035_dt1_z02_c75"), (0.025, "run_glottis_h025_dt0
 # well
 LEVELS_02S = ((0.035, "run_glottis_h035_dt1_z02_c75_02s"), (0.025, "run_glottis_h025_dt07_z02_c75_02s"),
               (0.0175, "run_glottis_h0175_dt07_z02_c75_02s"))
-LEVEL_WINDOWS = ((0.03, 0.06, LEVELS), (0.05, 0.1, LEVELS), (0.13, 0.2, LEVELS_02S))
+LEVEL_WINDOWS = ((0.03, 0.06, LEVELS), (0.05, 0.1, LEVELS), (0.13, 0.2, LEVELS_02S), (0.13, 0.155, LEVELS_02S))
 
 
 def stats(run, t0, t1):
