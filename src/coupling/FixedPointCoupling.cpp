@@ -64,6 +64,15 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
   // first evaluation logs no relaxation factor: NaN, on every run and
   // after a restart alike)
   bool relaxed = false;
+  // The iterate with the smallest residual: where a discontinuous map
+  // (the glottis's porous region switching cell-wise near closure) makes
+  // the accelerator wander off, an unconverged step keeps that one rather
+  // than the last (one 2-rank closing-cycle run, stop 38: residual
+  // 2.8e-5 at the first evaluation, 3.1e-4 after 50, and a flow spike of
+  // +28 % at a 12 µm gap from the last iterate's state)
+  std::vector<double> x_best;
+  double best = std::numeric_limits<double>::infinity();
+  int k_best = 0;
   for (int k = 1; k <= _par.max_iterations; ++k)
   {
     H(x, Hx);
@@ -88,6 +97,8 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
       rep.converged = true;
       break;
     }
+    if (rep.residual < best)
+      best = rep.residual, k_best = k, x_best = x;
     if (k == _par.max_iterations and _par.max_iterations > 1)
       break;
     _acc->update(x, Hx, next);
@@ -95,6 +106,22 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
     x.swap(next);
   }
   const bool explicit_scheme = _par.max_iterations == 1;
+  const int k_last = rep.iterations;
+  const double last_residual = rep.residual;
+  if (!rep.converged and !explicit_scheme and k_best < k_last)
+  {
+    // Evaluate the best iterate again, so that the sub-solvers hold its
+    // state (H is a function of x within the step: every evaluation starts
+    // from the step's saved state)
+    x = x_best;
+    H(x, Hx);
+    for (std::size_t i = 0; i < x.size(); ++i)
+      r[i] = Hx[i] - x[i];
+    const double nr = norm(_comm, r), nH = norm(_comm, Hx);
+    rep.residual = nH > 0 ? nr / nH : nr;
+    rep.residual_abs = nr;
+    ++rep.iterations;
+  }
   if (_csv)
   {
     _csv->row({t, double(rep.iterations), rep.residual, rep.first_residual,
@@ -106,12 +133,16 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
   {
     const std::string msg = fmt::format(
         "coupling: not converged at t = {:.6g} s after {} iterations "
-        "(relative interface residual {:.3e}, tolerance {:g}, {})",
-        t, rep.iterations, rep.residual, _par.tol, _par.accelerator.method);
+        "(relative interface residual {:.3e}, tolerance {:g}, {}){}",
+        t, k_last, last_residual, _par.tol, _par.accelerator.method,
+        k_best < k_last
+            ? fmt::format("; kept iteration {}'s state, residual {:.3e}",
+                          k_best, rep.residual)
+            : "");
     // A residual as large as the interface variable itself is divergence,
     // not a stall: never accepted ("warn" is for steps stuck near the
     // tolerance; the elastic glottis's implicit iteration reached 1e31)
-    if (_par.on_failure == "error" or rep.residual > 1.0)
+    if (_par.on_failure == "error" or last_residual > 1.0)
       throw std::runtime_error(msg);
     fsai::log::warn("{}", msg);
   }

@@ -49,10 +49,10 @@ struct CouplingParameters
 /// Outcome of one coupled time step
 struct StepReport
 {
-  int iterations = 0;
-  double residual = 0;           ///< relative residual of the last iteration
+  int iterations = 0;            ///< evaluations of H
+  double residual = 0;           ///< relative residual of the kept iterate
   double first_residual = 0;     ///< relative residual of the first iteration
-  double residual_abs = 0;       ///< |H(x) − x| of the last iteration
+  double residual_abs = 0;       ///< |H(x) − x| of the kept iterate
   double first_residual_abs = 0; ///< |H(x) − x| of the first iteration
   bool converged = false;
 };
@@ -73,7 +73,8 @@ public:
   ~FixedPointCoupling();
 
   /// Iterate one time step from the predictor x (on return: the last
-  /// iterate, whose H the sub-solvers hold)
+  /// iterate, whose H the sub-solvers hold; for a step that does not
+  /// converge, the iterate with the smallest residual, evaluated once more)
   StepReport step(double t, std::vector<double>& x, const Map& H);
 
   /// The accelerator's history from past steps (IQN-ILS reuse) into / from
