@@ -58,8 +58,9 @@ TAUS = np.geomspace(0.005, 2.0, 400)  # [s]: the time constants the fit scans
 RUNS = (("h 0.035 mm, dt 1e-5, to 0.5 s", "run_glottis_h035_dt1_z02_c75_05s"),
         ("h 0.035 mm, dt 5e-6, to 0.2 s", "run_glottis_h035_dt05_z02_c75_02s"),
         ("h 0.025 mm, dt 0.7e-5, to 0.2 s", "run_glottis_h025_dt07_z02_c75_02s"),
-        # (its continuation to 0.2 s, run_glottis_h0175_dt07_z02_c75_02s, is
-        # still running: this is the 0.1 s run)
+        # (its continuation, run_glottis_h0175_dt07_z02_c75_02s, stopped at
+        # 0.155 s when its checkpoint was lost, short of T_SHORT: this is
+        # the 0.1 s run)
         ("h 0.0175 mm, dt 0.7e-5, to 0.1 s", "run_glottis_h0175_dt07_z02_c75"))
 BERNOULLI = ["--flow", "bernoulli", "--dt", "1e-5", "--duration", "0.8"]
 ZETAS = (0.02, 0.01, 0.04)  # the reduced model's modal damping: the closing cycle's and ×½, ×2
