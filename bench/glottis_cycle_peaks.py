@@ -71,6 +71,20 @@ def cycles(run):
     return [(r[a][0], r[b][0] - r[a][0], max(x[2] for x in r[a:b])) for a, b in zip(up, up[1:])]
 
 
+def window_stats(c, t0, t1):
+    """(cycles, f0 = cycles / their duration, mean peak, (max − min) / mean
+    of the peaks, CV of the period) of the cycles of c starting in [t0, t1);
+    None if there are none"""
+    w = [x for x in c if t0 <= x[0] < t1]
+    if not w:
+        return None
+    f0 = len(w) / sum(x[1] for x in w)
+    q = [x[2] for x in w]
+    qm = sum(q) / len(q)
+    cv = math.sqrt(sum((x[1] - 1 / f0) ** 2 for x in w) / len(w)) * f0
+    return len(w), f0, qm, (max(q) - min(q)) / qm, cv
+
+
 ref_name, ref_run = REFERENCE
 ref = cycles(ref_run)
 if not ref:
@@ -108,30 +122,24 @@ print("| run | cycles | f0 = cycles / their duration | mean of the cycle peaks |
 print("|---|---|---|---|---|---|---|---|")
 late_ref = None
 for name, run in (REFERENCE,) + RUNS:
-    w = [x for x in cycles(run) if LATE[0] <= x[0] < LATE[1]]
-    if "to 0.2 s" not in name or not w:
+    st = window_stats(cycles(run), *LATE) if "to 0.2 s" in name else None
+    if st is None:
         continue
-    f0 = len(w) / sum(x[1] for x in w)
-    q = [x[2] for x in w]
-    qm = sum(q) / len(q)
-    tm = 1 / f0
-    cv = math.sqrt(sum((x[1] - tm) ** 2 for x in w) / len(w)) / tm
+    n, f0, qm, spread, cv = st
     late_ref = late_ref or (f0, qm)
-    print(f"| {name} | {len(w)} | {f0:.2f} Hz | {1e3 * qm:.4f} l/s | {100 * (f0 / late_ref[0] - 1):+.2f} % | "
-          f"{100 * (qm / late_ref[1] - 1):+.2f} % | {100 * (max(q) - min(q)) / qm:.2f} % | {100 * cv:.2f} % |")
+    print(f"| {name} | {n} | {f0:.2f} Hz | {1e3 * qm:.4f} l/s | {100 * (f0 / late_ref[0] - 1):+.2f} % | "
+          f"{100 * (qm / late_ref[1] - 1):+.2f} % | {100 * spread:.2f} % | {100 * cv:.2f} % |")
 
 print(f"\nThe start-up swing of {ref_name}, {1e3 * WINDOW:g} ms windows:")
 print("| window [ms] | cycles | f0 | mean peak flow | spread of the peaks (max − min) / mean |")
 print("|---|---|---|---|---|")
 t0 = T_START
 while ref and t0 < ref[-1][0]:
-    w = [x for x in ref if t0 <= x[0] < t0 + WINDOW]
-    if w:
-        q = [x[2] for x in w]
-        mean = sum(q) / len(q)
-        f0 = len(w) / sum(x[1] for x in w)
-        print(f"| {1e3 * t0:.0f}–{1e3 * (t0 + WINDOW):.0f} | {len(w)} | {f0:.2f} Hz | {1e3 * mean:.4f} l/s | "
-              f"{100 * (max(q) - min(q)) / mean:.2f} % |")
+    st = window_stats(ref, t0, t0 + WINDOW)
+    if st:
+        n, f0, mean, spread, _ = st
+        print(f"| {1e3 * t0:.0f}–{1e3 * (t0 + WINDOW):.0f} | {n} | {f0:.2f} Hz | {1e3 * mean:.4f} l/s | "
+              f"{100 * spread:.2f} % |")
     t0 += WINDOW
 
 # 3. The reduced model of the same fold, long enough to settle

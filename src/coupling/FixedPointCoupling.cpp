@@ -73,7 +73,8 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
   std::vector<double> x_best;
   double best = std::numeric_limits<double>::infinity();
   int k_best = 0;
-  for (int k = 1; k <= _par.max_iterations; ++k)
+  // Evaluation k of H at x: Hx, r and the report's residuals
+  auto evaluate = [&](int k)
   {
     H(x, Hx);
     for (std::size_t i = 0; i < x.size(); ++i)
@@ -90,9 +91,14 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
     rep.residual = nH > 0 ? nr / nH : nr;
     rep.residual_abs = nr;
     rep.iterations = k;
+  };
+  for (int k = 1; k <= _par.max_iterations; ++k)
+  {
+    evaluate(k);
     if (k == 1)
-      rep.first_residual = rep.residual, rep.first_residual_abs = nr;
-    if (rep.residual <= _par.tol or nr <= _par.atol)
+      rep.first_residual = rep.residual,
+      rep.first_residual_abs = rep.residual_abs;
+    if (rep.residual <= _par.tol or rep.residual_abs <= _par.atol)
     {
       rep.converged = true;
       break;
@@ -114,13 +120,7 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
     // state (H is a function of x within the step: every evaluation starts
     // from the step's saved state)
     x = x_best;
-    H(x, Hx);
-    for (std::size_t i = 0; i < x.size(); ++i)
-      r[i] = Hx[i] - x[i];
-    const double nr = norm(_comm, r), nH = norm(_comm, Hx);
-    rep.residual = nH > 0 ? nr / nH : nr;
-    rep.residual_abs = nr;
-    ++rep.iterations;
+    evaluate(k_last + 1);
   }
   if (_csv)
   {
