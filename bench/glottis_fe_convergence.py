@@ -48,7 +48,9 @@ to that window, and the three levels' observed order in it. That run ended
 at t = 0.155 s (its checkpoint was lost with the machine, stop 38), so
 stop 38 adds the window t in [0.13, 0.155] s, the part of the late window
 that every level reaches (3-4 cycles; bench/glottis_cycle_peaks.py pairs
-its cycles one by one).
+its cycles one by one). Stop 39 adds the finest level run again from rest
+at Δt 0.5e-5 (case h0175_dt05_z02_c75_02s: the jet CFL of the other two
+levels) to the late window, as a third level of its own.
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
                                           and glottis_fe_three_levels.csv)
@@ -115,7 +117,9 @@ RUNS["closing, h 0.035 mm, late"] = (("dt 1e-5", "run_glottis_h035_dt1_z02_c75_0
                                      # stop 36: the reference's Δt/2 to 0.2 s
                                      ("dt 5e-6", "run_glottis_h035_dt05_z02_c75_02s"),
                                      # stop 37: the finest level to 0.2 s
-                                     ("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75_02s"))
+                                     ("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75_02s"),
+                                     # stop 39: the finest level at the others' jet CFL
+                                     ("h 0.0175 mm, dt 0.5e-5", "run_glottis_h0175_dt05_z02_c75_02s"))
 # stop 38: the finest level stopped at 0.155 s; the late window cut there
 RUNS["closing, h 0.035 mm, late to 0.155 s"] = RUNS["closing, h 0.035 mm, late"]
 RUNS["closing, h 0.035 mm"] += (("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75"),)
@@ -127,7 +131,12 @@ LEVELS = ((0.035, "run_glottis_h035_dt1_z02_c75"), (0.025, "run_glottis_h025_dt0
 # well
 LEVELS_02S = ((0.035, "run_glottis_h035_dt1_z02_c75_02s"), (0.025, "run_glottis_h025_dt07_z02_c75_02s"),
               (0.0175, "run_glottis_h0175_dt07_z02_c75_02s"))
-LEVEL_WINDOWS = ((0.03, 0.06, LEVELS), (0.05, 0.1, LEVELS), (0.13, 0.2, LEVELS_02S), (0.13, 0.155, LEVELS_02S))
+# stop 39: the finest level again from rest at Δt 0.5e-5, the jet CFL of the
+# other two levels (12.8 / 12.5; Δt 0.7e-5 gave it 17.9), to 0.2 s
+LEVELS_02S_CFL = LEVELS_02S[:2] + ((0.0175, "run_glottis_h0175_dt05_z02_c75_02s"),)
+# (t0, t1, levels, what sets them apart)
+LEVEL_WINDOWS = ((0.03, 0.06, LEVELS, ""), (0.05, 0.1, LEVELS, ""), (0.13, 0.2, LEVELS_02S, ""),
+                 (0.13, 0.155, LEVELS_02S, ""), (0.13, 0.2, LEVELS_02S_CFL, "finest at dt 0.5e-5"))
 
 
 def stats(run, t0, t1):
@@ -213,7 +222,8 @@ print("| window | quantity | 0.035 mm | 0.025 mm | 0.0175 mm | change 0.035→0.
       "| observed order p | extrapolated | GCI of 0.0175 mm | 0.025 mm from extrapolated |")
 print("|---|---|---|---|---|---|---|---|---|---|---|")
 level_rows = []
-for t0, t1, levels in LEVEL_WINDOWS:
+for t0, t1, levels, note in LEVEL_WINDOWS:
+    label = f"[{t0}, {t1}] s" + (f", {note}" if note else "")
     st = []
     for h, run in levels:
         if not os.path.exists(os.path.join(res, run, "series.csv")):
@@ -223,7 +233,7 @@ for t0, t1, levels in LEVEL_WINDOWS:
             break
         st.append(s)
     if len(st) < 3:
-        print(f"| [{t0}, {t1}] s | (a level does not reach {t1} s yet) |")
+        print(f"| {label} | (a level does not reach {t1} s yet) |")
         continue
     hs = [h for h, _ in levels]
     for name, k, scale, unit in (("f0", 0, 1.0, "Hz"), ("peak flow", 1, 1e3, "l/s"),
@@ -232,7 +242,7 @@ for t0, t1, levels in LEVEL_WINDOWS:
         o = observed_order(hs, phi)
         why, o = (o, None) if isinstance(o, str) else ("", o)
         c1, c2 = 100 * (phi[1] / phi[0] - 1), 100 * (phi[2] / phi[1] - 1)
-        row = {"window": f"{t0}-{t1}", "quantity": name, "coarse": phi[0], "medium": phi[1], "fine": phi[2],
+        row = {"window": f"{t0}-{t1}" + (f" ({note})" if note else ""), "quantity": name, "coarse": phi[0], "medium": phi[1], "fine": phi[2],
                "change_coarse_medium_pct": c1, "change_medium_fine_pct": c2,
                "order": o[0] if o else float("nan"), "extrapolated": o[1] if o else float("nan"),
                "gci_fine_pct": 100 * o[2] if o else float("nan"),
@@ -240,7 +250,7 @@ for t0, t1, levels in LEVEL_WINDOWS:
         level_rows.append(row)
         tail = (f"{o[0]:.2f} | {o[1]:.4f} {unit} | {100 * o[2]:.2f} % | {row['medium_from_extrapolated_pct']:+.2f} %"
                 if o else f"{why} | | |")
-        print(f"| [{t0}, {t1}] s | {name} | {phi[0]:.4f} | {phi[1]:.4f} | {phi[2]:.4f} | {c1:+.2f} % | {c2:+.2f} % "
+        print(f"| {label} | {name} | {phi[0]:.4f} | {phi[1]:.4f} | {phi[2]:.4f} | {c1:+.2f} % | {c2:+.2f} % "
               f"| {tail} |")
 if level_rows:
     write_rows(os.path.join(res, "glottis_fe_three_levels.csv"), level_rows)

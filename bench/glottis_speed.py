@@ -4,9 +4,9 @@ speed point: < 10 min on 2 cores).
 
 The configuration is the preset demos/glottis/closing_cycle.toml (h_gap
 0.035 mm, Δt 1e-5, ζ 0.02, p_sub 1200 Pa), run for 0.1 s with the flow's
-cell integrals at quadrature degree 4 (the default) and 2
-(`--fluid.quadrature_degree 2`: the same cycle to 0.03 %, README
-"Quadrature degree 2"). The machines here drift in speed by 15-40 %
+cell integrals at quadrature degree 2 (the preset's since stop 39: the same
+cycle to 0.03 %, README "Quadrature degree 2") and 4 (the solver's default,
+at which the README's mesh/Δt ladder was run). The machines here drift in speed by 15-40 %
 between runs, so the two are run in interleaved pairs (4, 2, 4, 2, ...) and
 compared as ratios within a pair; the order alternates from pair to pair
 (4, 2, then 2, 4), as the first run of a pair tends to be the slower
