@@ -56,6 +56,7 @@ RUNS = (("h 0.035 mm, dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
         ("h 0.035 mm, dt 5e-6, to 0.2 s", "run_glottis_h035_dt05_z02_c75_02s"),
         ("h 0.0175 mm, dt 0.7e-5, to 0.2 s", "run_glottis_h0175_dt07_z02_c75_02s"),
         # stop 39: the finest level again from rest at the others' jet CFL
+        # (reached 0.2 s in stop 40)
         ("h 0.0175 mm, dt 0.5e-5, to 0.2 s", "run_glottis_h0175_dt05_z02_c75_02s"))
 WINDOW = 0.025  # [s]: the long run's windows
 # stop 38: the cycles that start in [0.1, 0.15) s, which every run to 0.2 s

@@ -50,7 +50,8 @@ stop 38 adds the window t in [0.13, 0.155] s, the part of the late window
 that every level reaches (3-4 cycles; bench/glottis_cycle_peaks.py pairs
 its cycles one by one). Stop 39 adds the finest level run again from rest
 at Δt 0.5e-5 (case h0175_dt05_z02_c75_02s: the jet CFL of the other two
-levels) to the late window, as a third level of its own.
+levels) to the late window, as a third level of its own; it reached 0.2 s
+in stop 40 (four legs from its checkpoints, logs run_restart_a-d.log).
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
                                           and glottis_fe_three_levels.csv)
