@@ -20,8 +20,15 @@ cycle by cycle, long enough to see where it goes:
 - the 25 ms window means, and the first window after which every later
   window mean stays within 0.5 % of the last one (the settled time).
 
-Runs: the reference (h_gap 0.035 mm, Δt 1e-5) continued to 0.5 s from its
-0.2 s checkpoint (--restart, log run_restart_05s.log), the Δt/2 and
+Runs: the reference (h_gap 0.035 mm, Δt 1e-5, quadrature degree 4)
+continued to 0.5 s from its 0.2 s checkpoint (--restart, log
+run_restart_05s.log), the preset demos/glottis/closing_cycle.toml as
+committed (the same mesh and Δt at quadrature degree 2) from rest to 0.5 s
+(stop 40:
+  mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml
+      --duration 0.5 --stats_from 0.5 --write_every 0
+      --checkpoint-every 10000 --output bench/results/run_glottis_preset_q2_05s
+), the Δt/2 and
 0.025 mm levels to 0.2 s, the 0.0175 mm level to 0.1 s, and the
 reduced model (--flow bernoulli, the same fold and Δt; it runs 0.8 s in
 seconds, in a temporary folder) at the same damping ζ = 0.02 and at half
@@ -35,6 +42,7 @@ writes bench/results/glottis_limit_cycle.csv (every cycle of every run),
 glottis_limit_cycle_fit.csv (the fits) and glottis_limit_cycle.png
 """
 import argparse
+import json
 import os
 import subprocess
 import tempfile
@@ -61,7 +69,11 @@ RUNS = (("h 0.035 mm, dt 1e-5, to 0.5 s", "run_glottis_h035_dt1_z02_c75_05s"),
         # (its continuation, run_glottis_h0175_dt07_z02_c75_02s, stopped at
         # 0.155 s when its checkpoint was lost, short of T_SHORT: this is
         # the 0.1 s run)
-        ("h 0.0175 mm, dt 0.7e-5, to 0.1 s", "run_glottis_h0175_dt07_z02_c75"))
+        ("h 0.0175 mm, dt 0.7e-5, to 0.1 s", "run_glottis_h0175_dt07_z02_c75"),
+        # the preset as committed (quadrature degree 2, stop 39), from rest
+        ("preset (degree 2), to 0.5 s", "run_glottis_preset_q2_05s"))
+# the runs to 0.5 s: their own summaries (t >= 0.25 s) side by side
+LONG_RUNS = ("run_glottis_h035_dt1_z02_c75_05s", "run_glottis_preset_q2_05s")
 BERNOULLI = ["--flow", "bernoulli", "--dt", "1e-5", "--duration", "0.8"]
 ZETAS = (0.02, 0.01, 0.04)  # the reduced model's modal damping: the closing cycle's and ×½, ×2
 QUANTITIES = (("f0_hz", "f0 [Hz]"), ("q_peak_ls", "peak flow [l/s]"), ("q_mean_ls", "mean flow [l/s]"),
@@ -198,6 +210,30 @@ print_markdown_table((("run", lambda r: r[0]), ("window [ms]", lambda r: f"{1e3 
                                 for key, label in QUANTITIES + (("phi_lead_deg", "φ lead [°]"),)),
                      [(name, t0, [x for x in c if t0 <= x["t0_s"] < t0 + WINDOW])
                       for name, c in runs for t0, _ in windows(c, "f0_hz")])
+
+long_runs = []
+for run in LONG_RUNS:
+    path = os.path.join(res, run, "summary.json")
+    if os.path.exists(path):
+        with open(path) as f:
+            sm = json.load(f)
+        if sm.get("sim_time_s", 0) >= 0.5 - 1e-9:
+            long_runs.append((run, sm))
+if long_runs:
+    ref_sm = long_runs[0][1]
+    print("\nThe runs to 0.5 s, their own summaries over t >= 0.25 s (change against the first):")
+    summary_keys = (("f0_hz", "f0 [Hz]", 1), ("open_quotient", "OQ", 1), ("q_peak_m3s", "peak flow [l/s]", 1e3),
+                    ("q_peak_cycle_mean_m3s", "mean cycle peak [l/s]", 1e3),
+                    ("closed_leakage", "leakage [% of peak]", 100), ("period_cv", "period CV [%]", 100))
+    print_markdown_table((("run", lambda r: r[0]), ("cycles", lambda r: str(r[1]["cycles"])),
+                          ("quadrature degree", lambda r: str(r[1]["parameters"]["fluid"]["quadrature_degree"])))
+                         + tuple((label, (lambda k, sc: lambda r: f"{sc * r[1][k]:.4g}"
+                                          + ("" if r is long_runs[0] else
+                                             f" ({100 * (r[1][k] / ref_sm[k] - 1):+.2f} %)"))(key, scale))
+                                 for key, label, scale in summary_keys)
+                         + (("wall [s]", lambda r: f"{r[1]['wall_s']:.0f} for "
+                             f"{r[1]['sim_time_s'] - r[1].get('restarted_from_step', 0) * r[1]['parameters']['dt']:.2g} s"),),
+                         long_runs)
 write_rows(os.path.join(res, "glottis_limit_cycle.csv"), rows)
 write_rows(os.path.join(res, "glottis_limit_cycle_fit.csv"), fits)
 
