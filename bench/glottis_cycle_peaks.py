@@ -66,7 +66,7 @@ LATE = (0.1, 0.15)  # [s]
 # reach 0.2 s (a cycle is 6.5 ms)
 LATE_FULL = (0.1, 0.19)  # [s]
 # stop 39: the five cycles the finest level at dt 0.5e-5 had completed when
-# it was paused at 0.14 s (README's provisional table)
+# it was paused at 0.14 s (the first rows of the README's table)
 LATE_PARTIAL = (0.095, 0.125)  # [s]
 
 

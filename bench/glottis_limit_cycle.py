@@ -228,11 +228,17 @@ if long_runs:
     summary_keys = (("f0_hz", "f0 [Hz]", 1), ("open_quotient", "OQ", 1), ("q_peak_m3s", "peak flow [l/s]", 1e3),
                     ("q_peak_cycle_mean_m3s", "mean cycle peak [l/s]", 1e3),
                     ("closed_leakage", "leakage [% of peak]", 100), ("period_cv", "period CV [%]", 100))
+
+    def summary_cell(sm, key, scale):
+        """the value, and for the later runs its change against the first"""
+        text = f"{scale * sm[key]:.4g}"
+        if sm is not ref_sm:
+            text += f" ({100 * (sm[key] / ref_sm[key] - 1):+.2f} %)"
+        return text
+
     print_markdown_table((("run", lambda r: r[0]), ("cycles", lambda r: str(r[1]["cycles"])),
                           ("quadrature degree", lambda r: str(r[1]["parameters"]["fluid"]["quadrature_degree"])))
-                         + tuple((label, (lambda k, sc: lambda r: f"{sc * r[1][k]:.4g}"
-                                          + ("" if r is long_runs[0] else
-                                             f" ({100 * (r[1][k] / ref_sm[k] - 1):+.2f} %)"))(key, scale))
+                         + tuple((label, lambda r, k=key, sc=scale: summary_cell(r[1], k, sc))
                                  for key, label, scale in summary_keys)
                          + (("wall [s]", lambda r: f"{r[1]['wall_s']:.0f} for "
                              f"{r[1]['sim_time_s'] - r[1].get('restarted_from_step', 0) * r[1]['parameters']['dt']:.2g} s"),),
