@@ -1,5 +1,8 @@
 """Helpers shared by the bench scripts."""
 import csv
+import os
+
+import numpy as np
 
 
 def read_float_rows(path):
@@ -29,3 +32,45 @@ def print_markdown_table(columns, rows):
     print("|" + "---|" * len(columns))
     for r in rows:
         print("| " + " | ".join(fmt(r) for _, fmt in columns) + " |")
+
+
+def first_harmonic(t, y, period):
+    """Complex amplitude of y's first harmonic over one period (trapezoidal)"""
+    e = np.exp(-2j * np.pi * (t - t[0]) / period)
+    return 2 / period * np.trapz(y * e, t)
+
+
+def glottal_cycles(path, g_cross, t_start):
+    """One dict per whole cycle of a glottis run's series.csv (none if the
+    file is missing). A cycle runs from one upward crossing of the half-gap
+    g = g_cross [m] to the next (g_cross None: the middle of g's range after
+    t_start, for a fold that does not come near the axis); cycles that start
+    before t_start [s] (the start-up) are left out. Per cycle: its start, f0 = 1/period, the largest
+    and the mean flow, the open quotient (the share of steps not flagged
+    closed), the first harmonic of h and φ (amplitudes, and φ's phase lead
+    on h), and the largest half-gap."""
+    if not os.path.exists(path):
+        return []
+    r = read_float_rows(path)
+    col = {k: np.array([x[k] for x in r]) for k in r[0]}
+    t = col["t_s"]
+    if g_cross is None:
+        g = col["gap_m"][t > t_start]
+        g_cross = (g.min() + g.max()) / 2
+    up = [i for i in upward_crossings(col["gap_m"], g_cross) if t[i - 1] > t_start]
+    out = []
+    for a, b in zip(up, up[1:]):
+        s = slice(a, b + 1)  # both ends: the trapezoids cover the whole period
+        T = t[b] - t[a]
+        ts = t[s]
+        h1 = first_harmonic(ts, col["h_m"][s], T)
+        p1 = first_harmonic(ts, col["phi_rad"][s], T)
+        out.append({"t0_s": t[a], "f0_hz": 1 / T, "q_peak_ls": 1e3 * col["Q_m3s"][a:b].max(),
+                    "q_mean_ls": 1e3 * np.trapz(col["Q_m3s"][s], ts) / T,
+                    "open_quotient": 1 - col["closed"][a:b].mean(),
+                    "h_amp_mm": 1e3 * abs(h1), "phi_amp_mrad": 1e3 * abs(p1),
+                    # in [−90°, 270°): neither model's lead (≈ 20° FE,
+                    # ≈ 165° Bernoulli) wraps around there
+                    "phi_lead_deg": (np.degrees(np.angle(p1 / h1)) + 90) % 360 - 90,
+                    "max_gap_mm": 1e3 * col["gap_m"][a:b].max()})
+    return out

@@ -49,7 +49,7 @@ import subprocess
 import tempfile
 
 import numpy as np
-from benchlib import read_float_rows, upward_crossings, write_rows, print_markdown_table
+from benchlib import glottal_cycles, write_rows, print_markdown_table
 
 here = os.path.dirname(os.path.abspath(__file__))
 res = os.path.join(here, "results")
@@ -82,38 +82,6 @@ ZETAS = (0.02, 0.01, 0.04)  # the reduced model's modal damping: the closing cyc
 QUANTITIES = (("f0_hz", "f0 [Hz]"), ("q_peak_ls", "peak flow [l/s]"), ("q_mean_ls", "mean flow [l/s]"),
               ("open_quotient", "open quotient"), ("h_amp_mm", "h amplitude [mm]"),
               ("phi_amp_mrad", "φ amplitude [mrad]"), ("max_gap_mm", "largest half-gap [mm]"))
-
-
-def first_harmonic(t, y, period):
-    """Complex amplitude of y's first harmonic over one period (trapezoidal)"""
-    e = np.exp(-2j * np.pi * (t - t[0]) / period)
-    return 2 / period * np.trapz(y * e, t)
-
-
-def cycles(path):
-    """One dict per whole cycle after T_START of the run's series.csv"""
-    if not os.path.exists(path):
-        return []
-    r = read_float_rows(path)
-    col = {k: np.array([x[k] for x in r]) for k in r[0]}
-    t = col["t_s"]
-    up = [i for i in upward_crossings(col["gap_m"], G_CROSS) if t[i - 1] > T_START]
-    out = []
-    for a, b in zip(up, up[1:]):
-        s = slice(a, b + 1)  # both ends: the trapezoids cover the whole period
-        T = t[b] - t[a]
-        ts = t[s]
-        h1 = first_harmonic(ts, col["h_m"][s], T)
-        p1 = first_harmonic(ts, col["phi_rad"][s], T)
-        out.append({"t0_s": t[a], "f0_hz": 1 / T, "q_peak_ls": 1e3 * col["Q_m3s"][a:b].max(),
-                    "q_mean_ls": 1e3 * np.trapz(col["Q_m3s"][s], ts) / T,
-                    "open_quotient": 1 - col["closed"][a:b].mean(),
-                    "h_amp_mm": 1e3 * abs(h1), "phi_amp_mrad": 1e3 * abs(p1),
-                    # in [−90°, 270°): neither model's lead (≈ 20° FE,
-                    # ≈ 165° Bernoulli) wraps around there
-                    "phi_lead_deg": (np.degrees(np.angle(p1 / h1)) + 90) % 360 - 90,
-                    "max_gap_mm": 1e3 * col["gap_m"][a:b].max()})
-    return out
 
 
 def fit_exponential(t, y):
@@ -150,14 +118,16 @@ def windows(c, key):
     return out
 
 
-runs = [(name, cycles(os.path.join(res, run, "series.csv"))) for name, run in RUNS]
+runs = [(name, glottal_cycles(os.path.join(res, run, "series.csv"), G_CROSS, T_START))
+        for name, run in RUNS]
 exe = os.path.join(args.build, "demos", "fsai_glottis")
 if os.path.exists(exe):
     for zeta in ZETAS:
         with tempfile.TemporaryDirectory() as tmp:
             subprocess.run([exe] + BERNOULLI + ["--vf.zeta1", str(zeta), "--vf.zeta2", str(zeta),
                                                 "--output", tmp], check=True, stdout=subprocess.DEVNULL)
-            runs.append((f"bernoulli, ζ {zeta}", cycles(os.path.join(tmp, "series.csv"))))
+            runs.append((f"bernoulli, ζ {zeta}",
+                         glottal_cycles(os.path.join(tmp, "series.csv"), G_CROSS, T_START)))
 runs = [(n, c) for n, c in runs if c]
 fe_runs = [n for n, _ in runs if not n.startswith("bernoulli")]
 
