@@ -4,7 +4,7 @@
 
 Issue 7 asks for a 2-DOF fold with in-vacuo modes ≈ 100 and 160 Hz and a
 limit cycle in the male range 85-155 Hz. The FE scene's limit cycle is
-155.29 Hz on the preset's mesh and ≈ 157-158 Hz mesh-converged (README,
+155.29 Hz on the preset's mesh and ≈ 156-157 Hz mesh-converged (README,
 "f0 and the male range"). This script measures how far each of the fold's
 parameters moves f0, without changing any default:
 
