@@ -45,10 +45,10 @@ def glottal_cycles(path, g_cross, t_start):
     file is missing). A cycle runs from one upward crossing of the half-gap
     g = g_cross [m] to the next (g_cross None: the middle of g's range after
     t_start, for a fold that does not come near the axis); cycles that start
-    before t_start [s] (the start-up) are left out. Per cycle: its start, f0 = 1/period, the largest
-    and the mean flow, the open quotient (the share of steps not flagged
-    closed), the first harmonic of h and φ (amplitudes, and φ's phase lead
-    on h), and the largest half-gap."""
+    before t_start [s] (the start-up) are left out. Per cycle: its start,
+    f0 = 1/period, the largest and the mean flow, the open quotient (the
+    share of steps not flagged closed), the first harmonic of h and φ
+    (amplitudes, and φ's phase lead on h), and the largest half-gap."""
     if not os.path.exists(path):
         return []
     r = read_float_rows(path)

@@ -51,7 +51,8 @@ exe = os.path.join(args.build, "demos", "fsai_glottis")
 # the reduced model at the preset's damping and time step
 BERNOULLI = ["--flow", "bernoulli", "--dt", "1e-5", "--duration", "0.5", "--stats_from", "0.5",
              "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]
-DEFAULTS = {"vf.f1": 100.0, "vf.f2": 160.0, "vf.axis_dx": -1e-3, "zeta": 0.02, "p-sub": 1200.0}
+# the demo's in-vacuo frequencies: the reference point of the tables
+DEFAULTS = {"vf.f1": 100.0, "vf.f2": 160.0}
 SWEEPS = (("vf.f2", (151, 152, 155, 160, 165, 170, 180)),
           ("vf.f1", (85, 90, 95, 100, 105, 110)),
           ("vf.axis_dx", (-0.5e-3, -0.75e-3, -1e-3, -1.25e-3, -1.5e-3)),
@@ -67,8 +68,19 @@ FE_RUNS = ((100, 155, "run_glottis_preset_f2_155_02s"),
            (90, 160, "run_glottis_preset_f1_90_02s"))
 
 
+def run_demo(opts, tmp):
+    """Run the demo with opts into the folder tmp: True if it ran, False if
+    it refused the fold's frequencies (its InputError); any other failure
+    raises"""
+    p = subprocess.run([exe] + opts + ["--output", tmp], capture_output=True, text=True)
+    if p.returncode != 0 and "cannot both be in-vacuo frequencies" not in p.stderr:
+        raise RuntimeError(f"{' '.join(opts)}: {p.stderr.strip()}")
+    return p.returncode == 0
+
+
 def reduced(param, value):
-    """One reduced-model run with param = value, the others at DEFAULTS"""
+    """One reduced-model run with param = value, the others at the demo's
+    defaults (ζ: the preset's)"""
     opts = list(BERNOULLI)
     if param == "zeta":
         opts[opts.index("--vf.zeta1") + 1] = opts[opts.index("--vf.zeta2") + 1] = str(value)
@@ -77,10 +89,7 @@ def reduced(param, value):
     row = {"parameter": param, "value": value, "admissible": 1, "f0_hz": float("nan"),
            "open_quotient": float("nan"), "q_peak_ls": float("nan"), "closes_every_cycle": 0}
     with tempfile.TemporaryDirectory() as tmp:
-        p = subprocess.run([exe] + opts + ["--output", tmp], capture_output=True, text=True)
-        if p.returncode != 0:
-            if "cannot both be in-vacuo frequencies" not in p.stderr:
-                raise RuntimeError(f"{param} = {value}: {p.stderr.strip()}")
+        if not run_demo(opts, tmp):
             row["admissible"] = 0
             return row
         with open(os.path.join(tmp, "summary.json")) as f:
@@ -91,13 +100,9 @@ def reduced(param, value):
 
 
 def admissible(param, value):
-    """Whether the demo accepts param = value (the others at DEFAULTS)"""
+    """Whether the demo accepts param = value (the others at its defaults)"""
     with tempfile.TemporaryDirectory() as tmp:
-        p = subprocess.run([exe, "--flow", "bernoulli", "--duration", "1e-4", f"--{param}", str(value),
-                            "--output", tmp], capture_output=True, text=True)
-    if p.returncode != 0 and "cannot both be in-vacuo frequencies" not in p.stderr:
-        raise RuntimeError(f"{param} = {value}: {p.stderr.strip()}")
-    return p.returncode == 0
+        return run_demo(["--flow", "bernoulli", "--duration", "1e-4", f"--{param}", str(value)], tmp)
 
 
 def boundary(param, ok, refused, steps=20):
@@ -163,7 +168,8 @@ if fe:
     print(f"\nFE scene (the preset), cycles starting in [{WINDOW[0]}, {WINDOW[1]}) s, against "
           f"f1 / f2 = {ref['f1_hz']} / {ref['f2_hz']} Hz:")
     print_markdown_table([
-        ("f1 [Hz]", lambda r: f"{r['f1_hz']}"), ("f2 [Hz]", lambda r: f"{r['f2_hz']}"), ("cycles", lambda r: f"{r['cycles']}"),
+        ("f1 [Hz]", lambda r: f"{r['f1_hz']}"), ("f2 [Hz]", lambda r: f"{r['f2_hz']}"),
+        ("cycles", lambda r: f"{r['cycles']}"),
         ("f0 [Hz]", lambda r: f"{r['f0_hz']:.2f}"),
         ("f0 change", lambda r: f"{r['f0_hz'] / ref['f0_hz'] - 1:+.2%}"),
         ("largest Q [l/s]", lambda r: f"{r['q_peak_ls']:.4f}"),
