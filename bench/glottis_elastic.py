@@ -2,7 +2,9 @@
 """The elastic vocal fold with the Bernoulli flow (fsai_glottis --flow
 bernoulli --fold elastic): oscillation and closure vs subglottal pressure
 and tissue damping, cycle-to-cycle regularity, the convergence of the
-default run in mesh and time step, and the 2-DOF fold under the same flow.
+default run in mesh and time step, the fold with clamped ends
+(--elastic.clamped_ends) against plane strain, and the 2-DOF fold under
+the same flow.
 
 Runs of 0.25 s, statistics over the second half (summary.json), two at a
 time. Writes bench/results/glottis_elastic.csv and glottis_elastic.png and
@@ -29,6 +31,8 @@ cases = [(f"p{p}", ["--fold", "elastic", "--p-sub", str(p)])
          for p in (200, 300, 400, 600, 800, 1200, 1600, 2400)]
 cases += [(f"z{z}", ["--fold", "elastic", "--p-sub", "1200", "--elastic.zeta", str(z)])
           for z in (0.02, 0.03, 0.05)]
+cases += [(f"c{p}", ["--fold", "elastic", "--elastic.clamped_ends", "--p-sub", str(p)])
+          for p in (200, 400, 800, 1200, 1600, 2400)]
 cases += [("dt1e-5", ["--fold", "elastic", "--dt", "1e-5"]),
           ("h0.1mm", ["--fold", "elastic", "--elastic.h_surface", "0.1e-3",
                       "--elastic.h_far", "0.5e-3"]),
@@ -47,6 +51,7 @@ def run(case):
     return {"case": label, "fold": par["fold"], "p_sub_Pa": par["p-sub"],
             "zeta": par["elastic"]["zeta"], "dt_s": par["dt"],
             "h_surface_m": par["elastic"]["h_surface"],
+            "clamped_ends": int(par["elastic"]["clamped_ends"]),
             "f0_hz": s["f0_hz"], "open_quotient": s["open_quotient"],
             "q_peak_m3s": s["q_peak_m3s"],
             "closes_every_cycle": int(s["closes_every_cycle"]),
@@ -59,7 +64,8 @@ with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
     rows = list(pool.map(run, cases))
 write_rows(os.path.join(out, "glottis_elastic.csv"), rows)
 print_markdown_table([
-    ("case", lambda r: r["case"]), ("fold", lambda r: r["fold"]),
+    ("case", lambda r: r["case"]),
+    ("fold", lambda r: r["fold"] + (", clamped" if r["clamped_ends"] else "")),
     ("p_sub [Pa]", lambda r: f"{r['p_sub_Pa']:.0f}"),
     ("ζ", lambda r: f"{r['zeta']:g}"), ("f0 [Hz]", lambda r: f"{r['f0_hz']:.2f}"),
     ("OQ", lambda r: f"{r['open_quotient']:.3f}"),
@@ -73,22 +79,27 @@ try:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    pr = [r for r in rows if r["case"].startswith("p")]
-    x = [r["p_sub_Pa"] for r in pr]
     fig, ax = plt.subplots(1, 3, figsize=(13, 3.8))
-    ax[0].plot(x, [r["f0_hz"] for r in pr], "o-")
     ax[0].axhspan(85, 155, color="0.9", label="male range")
+    for prefix, name, ls in (("p", "plane strain", "-"), ("c", "clamped ends", "--")):
+        pr = [r for r in rows if r["case"].startswith(prefix)]
+        x = [r["p_sub_Pa"] for r in pr]
+        ax[0].plot(x, [r["f0_hz"] for r in pr], "o" + ls, label=name)
+        ax[1].plot(x, [1e3 * r["q_peak_m3s"] for r in pr], "o" + ls,
+                   label=f"peak flow [l/s], {name}")
+        ax[1].plot(x, [r["open_quotient"] for r in pr], "s" + ls,
+                   label=f"open quotient, {name}")
+        ax[2].plot(x, [100 * r["period_cv"] for r in pr], "o" + ls,
+                   label=f"period, {name}")
+        ax[2].plot(x, [100 * r["q_peak_cycle_cv"] for r in pr], "s" + ls,
+                   label=f"peak flow, {name}")
     ax[0].set(xlabel="p_sub [Pa]", ylabel="f0 [Hz]", title="elastic fold, ζ 0.01")
     ax[0].legend()
-    ax[1].plot(x, [1e3 * r["q_peak_m3s"] for r in pr], "o-", label="peak flow [l/s]")
-    ax[1].plot(x, [r["open_quotient"] for r in pr], "s-", label="open quotient")
     ax[1].set(xlabel="p_sub [Pa]", title="flow")
-    ax[1].legend()
-    ax[2].plot(x, [100 * r["period_cv"] for r in pr], "o-", label="period")
-    ax[2].plot(x, [100 * r["q_peak_cycle_cv"] for r in pr], "s-", label="peak flow")
+    ax[1].legend(fontsize=7)
     ax[2].set(xlabel="p_sub [Pa]", ylabel="cycle-to-cycle CV [%]",
               title="regularity (0: limit cycle)")
-    ax[2].legend()
+    ax[2].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "glottis_elastic.png"), dpi=110)
 except ImportError:

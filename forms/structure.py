@@ -27,6 +27,19 @@
 # Materials are cell-wise (DG0 λ, μ, ρ), so layered folds (body/cover) need
 # no extra forms.
 #
+# Clamped section (2D only; kz2 = 0 is plane strain): a fold of length L
+# clamped at its anterior and posterior ends z = 0, L, reduced to its first
+# anterior–posterior harmonic u(x, y, z) = û(x, y) sin(πz/L), u_z = 0. The
+# shear strains ε_xz, ε_yz = ½ ∂_z u then add μ (π/L)² |û|² to the strain
+# energy density of the section (both energies carry the same factor ½
+# from the z-average of sin² and cos²): an elastic foundation
+#   + kz2 μ û·w,   kz2 = (π/L)²,
+# in the residual, the Rayleigh stiffness term and K. Being a restriction
+# of the clamped 3D fold's displacements, its frequencies bound the 3D
+# fold's from above (Rayleigh–Ritz); with a uniform μ/ρ it shifts every
+# plane-strain mode by ω² → ω² + (μ/ρ)(π/L)². Kept linear in the
+# St.Venant–Kirchhoff model.
+#
 # Modal analysis: K (linear stiffness) and M (mass) as bilinear forms.
 import ufl
 from ufl import (Identity, derivative, ds, dx, grad, inner, sym, tr)
@@ -63,6 +76,7 @@ g = ufl.Constant(mesh, shape=(dim(),))  # body acceleration [m/s²]
 k_c = ufl.Constant(mesh)         # contact penalty [Pa/m] (0: no contact)
 b_c = ufl.Constant(mesh)         # contact damping [s/m]
 y_c = ufl.Constant(mesh)         # contact plane y = y_c [m]
+kz2 = ufl.Constant(mesh)         # (π/L)² of a clamped section [1/m²]
 X = ufl.SpatialCoordinate(mesh)
 
 I = Identity(dim())
@@ -71,6 +85,12 @@ I = Identity(dim())
 def sigma_lin(x):
     eps = sym(grad(x))
     return lmbda * tr(eps) * I + 2 * mu * eps
+
+
+def stiffness(x, y):
+    """Linear stiffness density of x against y, with the clamped section's
+    foundation"""
+    return inner(sigma_lin(x), grad(y)) + kz2 * mu * inner(x, y)
 
 
 # Newmark kinematics
@@ -89,8 +109,8 @@ delta = ufl.max_value(y_c - (X[1] + u[1]), 0.0)
 p_c = k_c * delta * ufl.max_value(1.0 + b_c * dynamic * (-v[1]), 0.0)
 
 R = (dynamic * (rho * inner(a, w) + eps1 * rho * inner(v, w)
-                + eps2 * inner(sigma_lin(v), grad(w))) * dx
-     + inner(P, grad(w)) * dx
+                + eps2 * stiffness(v, w)) * dx
+     + (inner(P, grad(w)) + kz2 * mu * inner(u, w)) * dx
      - load * rho * inner(g, w) * dx
      - load * inner(traction, w) * ds(1)
      - p_c * w[1] * ds(1))
@@ -100,7 +120,7 @@ J = derivative(R, u, du)
 contact_force = p_c * ds(1)
 
 # Modal analysis and diagnostics
-k = inner(sigma_lin(du), grad(w)) * dx
+k = stiffness(du, w) * dx
 m = rho * inner(du, w) * dx
 
 forms = [R, J, k, m, contact_force]

@@ -3,12 +3,17 @@
 // fsai_modal: natural modes of a 3D vocal fold (shared/DESIGN.md §1): linear
 // elasticity, generalized eigenproblem K x = ω² M x by SLEPc
 // (shift-and-invert about 0), fold fixed on its lateral, anterior and
-// posterior faces; homogeneous or body–cover (two layers).
+// posterior faces; homogeneous or body–cover (two layers). `--dim 2` takes
+// the fold's coronal section instead, fixed on its lateral line: plane
+// strain, or with --solid.clamped_length L the section of a fold clamped at
+// z = 0, L (first anterior–posterior harmonic, forms/structure.py), the 2D
+// model of the glottis scene's elastic fold set against this 3D fold.
 //
 // Sample runs:
 //   ./fsai_modal                                  # 1 layer, P2, 10 modes
 //   ./fsai_modal --layers 2 --cover.E 2000
 //   mpirun -n 2 ./fsai_modal --fold.h 0.0007 -modal_eps_monitor
+//   ./fsai_modal --dim 2 --solid.clamped_length 0.016   # clamped section
 //
 // Outputs in --output (default results/fsai_modal): modes.csv, modes.xdmf
 // (mode k as "time" k, for ParaView), summary.json (frequencies_hz, dofs).
@@ -35,6 +40,7 @@ namespace
 struct ModalParameters
 {
   std::string output = "results/fsai_modal";
+  int dim = 3;
   int layers = 1;
   int order = 2;
   int modes = 10;
@@ -44,6 +50,9 @@ struct ModalParameters
   void bind(fsai::common::Parameters& p)
   {
     p.add("output", output, "output folder");
+    p.add("dim", dim,
+          "3 (the fold) or 2 (its coronal section, fixed on the lateral "
+          "line; see --solid.clamped_length)");
     p.add("layers", layers, "1 (homogeneous) or 2 (body and cover)");
     p.add("order", order, "Lagrange degree of the displacement (1 or 2)");
     p.add("modes", modes, "number of modes");
@@ -56,6 +65,7 @@ struct ModalParameters
   }
   void validate() const
   {
+    fsai::require(dim == 2 or dim == 3, "--dim", "2 or 3", dim);
     fsai::require(layers == 1 or layers == 2, "--layers", "1 or 2", layers);
     fsai::require(order == 1 or order == 2, "--order", "1 or 2", order);
     fsai::require(modes >= 1 and modes <= 50, "--modes", "in [1, 50]", modes);
@@ -82,8 +92,8 @@ int main(int argc, char* argv[])
         ModalParameters mp;
         fsai::structure::SolidParameters sp;
         fsai::mesh::VocalFoldGeometry geo;
-        fsai::common::Parameters params(rt.program(),
-                                        "Natural modes of a 3D vocal fold");
+        fsai::common::Parameters params(
+            rt.program(), "Natural modes of a 3D vocal fold or its section");
         mp.bind(params);
         sp.bind(params);
         geo.bind(params);
@@ -102,11 +112,13 @@ int main(int argc, char* argv[])
         fsai::mesh::MeshData m = [&]
         {
           fsai::common::ScopedTimer t("modal: mesh");
-          return fsai::mesh::vocal_fold(rt.comm(), geo);
+          return fsai::mesh::vocal_fold(rt.comm(), geo, mp.dim);
         }();
         std::vector<std::int32_t> fixed;
         for (const char* g : {"lateral", "anterior", "posterior"})
         {
+          if (mp.dim == 2 and std::string(g) != "lateral")
+            continue; // a section has no anterior and posterior faces
           auto f = m.facet_tags->find(m.facet_tag(g));
           fixed.insert(fixed.end(), f.begin(), f.end());
         }
@@ -119,27 +131,19 @@ int main(int argc, char* argv[])
 
         // 4. Describe each mode: dominant direction and the number of
         //    anterior-posterior half-waves of that component along the
-        //    medial surface
+        //    medial surface (a clamped section has one by construction,
+        //    plane strain none)
         const int nz = 41;
         std::vector<std::array<double, 3>> line;
         const double xm = geo.depth - 0.25 * geo.a;
         const double ym = geo.height - geo.b - 0.5 * geo.t_medial;
-        for (int i = 1; i < nz; ++i)
+        for (int i = 1; i < nz and mp.dim == 3; ++i)
           line.push_back({xm, ym, geo.length * i / nz});
         fsai::io::PointProbes probes(m.mesh, line);
-        fsai::io::CsvWriter csv(
-            rt.comm(), mp.output + "/modes.csv",
-            {"mode", "f_hz", "share_x", "share_y", "share_z", "ap_half_waves"});
-        fsai::io::TimeSeriesWriter xdmf(
-            mp.output + "/modes.xdmf",
-            {modes.empty() ? nullptr : modes[0].shape});
-        std::vector<double> freqs;
-        std::vector<std::string> words;
-        fsai::log::info("{:>4} {:>10}  {:<34} {:>22}", "mode", "f [Hz]",
-                        "description", "energy share x/y/z");
-        for (std::size_t k = 0; k < modes.size(); ++k)
+        auto half_waves = [&](const fsai::structure::Mode& md)
         {
-          const auto& md = modes[k];
+          if (mp.dim == 2)
+            return sp.clamped_length > 0 ? 1 : 0;
           auto v = probes.values(*md.shape);
           int changes = 0;
           double last = 0.0, peak = 0.0;
@@ -154,9 +158,28 @@ int main(int argc, char* argv[])
               ++changes;
             last = c;
           }
-          const std::string word = fmt::format(
-              "{} ({} a-p half-wave{})", direction_word(md.dominant),
-              changes + 1, changes == 0 ? "" : "s");
+          return changes + 1;
+        };
+        fsai::io::CsvWriter csv(
+            rt.comm(), mp.output + "/modes.csv",
+            {"mode", "f_hz", "share_x", "share_y", "share_z", "ap_half_waves"});
+        fsai::io::TimeSeriesWriter xdmf(
+            mp.output + "/modes.xdmf",
+            {modes.empty() ? nullptr : modes[0].shape});
+        std::vector<double> freqs;
+        std::vector<std::string> words;
+        fsai::log::info("{:>4} {:>10}  {:<34} {:>22}", "mode", "f [Hz]",
+                        "description", "energy share x/y/z");
+        for (std::size_t k = 0; k < modes.size(); ++k)
+        {
+          const auto& md = modes[k];
+          const int waves = half_waves(md);
+          const std::string word
+              = waves == 0 ? fmt::format("{} (plane strain)",
+                                         direction_word(md.dominant))
+                           : fmt::format("{} ({} a-p half-wave{})",
+                                         direction_word(md.dominant), waves,
+                                         waves == 1 ? "" : "s");
           freqs.push_back(md.frequency_hz);
           words.push_back(word);
           fsai::log::info("{:>4} {:>10.2f}  {:<34} {:>6.2f} {:>6.2f} {:>6.2f}",
@@ -164,7 +187,7 @@ int main(int argc, char* argv[])
                           md.direction_share[1], md.direction_share[2]);
           csv.row({double(k + 1), md.frequency_hz, md.direction_share[0],
                    md.direction_share[1], md.direction_share[2],
-                   double(changes + 1)});
+                   double(waves)});
           // One XDMF "time" per mode: copy the shape into the first field
           if (k > 0)
           {
@@ -180,7 +203,8 @@ int main(int argc, char* argv[])
         summary.set("descriptions", words);
         summary.set("dofs", solid.space()->dofmap()->index_map->size_global()
                                 * solid.space()->dofmap()->index_map_bs());
-        summary.set("cells", m.mesh->topology().index_map(3)->size_global());
+        summary.set("cells",
+                    m.mesh->topology().index_map(mp.dim)->size_global());
         summary.write(mp.output + "/summary.json");
         const double wall = std::chrono::duration<double>(
                                 std::chrono::steady_clock::now() - wall0)

@@ -31,6 +31,9 @@ void fsai::glottis::ElasticFoldParameters::bind(fsai::common::Parameters& p)
         "--fold elastic: upper frequency of zeta [Hz]");
   p.add("elastic.contact_factor", contact_factor,
         "--fold elastic: contact penalty k_c = factor * E / h_surface");
+  p.add("elastic.clamped_ends", clamped_ends,
+        "--fold elastic: the section of a fold clamped at its anterior and "
+        "posterior ends, geometry.depth apart (false: plane strain)");
   p.add_choice("elastic.coupling", coupling, {"auto", "explicit", "implicit"},
                "--fold elastic: coupling with the flow (explicit: one flow "
                "and fold solve per step; implicit: iterated, --coupling.*; "
@@ -82,6 +85,7 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   structure::SolidParameters sp;
   sp.degree = p.degree;
   sp.material = p.material;
+  sp.clamped_length = p.clamped_ends ? profile.geometry().depth : 0.0;
   const double wl = 2 * M_PI * p.f_zeta_low, wh = 2 * M_PI * p.f_zeta_high;
   sp.rayleigh_mass = 2 * p.zeta * wl * wh / (wl + wh);
   sp.rayleigh_stiffness = 2 * p.zeta / (wl + wh);

@@ -55,6 +55,12 @@ struct ElasticFoldParameters
   /// i.e. a fraction 1/factor of what the first cell's own stiffness
   /// allows; larger factors stiffen the Newton solves
   double contact_factor = 10;
+  /// The fold as the section of a fold of the scene's length L_g
+  /// (geometry.depth) clamped at its anterior and posterior ends
+  /// (SolidParameters::clamped_length: an elastic foundation μ (π/L_g)² u,
+  /// the first anterior–posterior harmonic). false: plane strain, a fold
+  /// held only at its lateral attachment
+  bool clamped_ends = false;
   /// Coupling of the fold with the flow: "explicit" (the load of the
   /// Newmark-predicted surface, one solve per step), "implicit" (iterated
   /// to the [coupling] tolerance) or "auto": explicit with the Bernoulli

@@ -68,11 +68,13 @@ fsai::mesh::VocalFoldGeometry::free_profile() const
 }
 //-----------------------------------------------------------------------------
 fsai::mesh::MeshData fsai::mesh::vocal_fold(MPI_Comm comm,
-                                            const VocalFoldGeometry& g)
+                                            const VocalFoldGeometry& g, int dim)
 {
   g.validate();
+  fsai::require(dim == 2 or dim == 3, "vocal fold mesh: dimension", "2 or 3",
+                dim);
   return build_with_gmsh(
-      comm, 3,
+      comm, dim,
       [&]()
       {
         namespace occ = gmsh::model::occ;
@@ -85,45 +87,54 @@ fsai::mesh::MeshData fsai::mesh::vocal_fold(MPI_Comm comm,
           lines.push_back(occ::addLine(pts[i], pts[i + 1]));
         lines.push_back(occ::addLine(pts.back(), pts.front())); // lateral wall
         const int s = occ::addPlaneSurface({occ::addCurveLoop(lines)});
-        gmsh::vectorpair out;
-        occ::extrude({{2, s}}, 0.0, 0.0, g.length, out);
+        int body = s;
+        if (dim == 3)
+        {
+          gmsh::vectorpair out;
+          occ::extrude({{2, s}}, 0.0, 0.0, g.length, out);
+          for (auto [d, t] : out)
+            if (d == 3)
+              body = t;
+        }
         occ::synchronize();
-        int volume = -1;
-        for (auto [d, t] : out)
-          if (d == 3)
-            volume = t;
 
+        // The section's boundary: the lateral line x = 0 and the free
+        // profile; the solid's also the anterior and posterior faces
         gmsh::vectorpair faces;
-        gmsh::model::getBoundary({{3, volume}}, faces, false, false, false);
+        gmsh::model::getBoundary({{dim, body}}, faces, false, false, false);
         const double tol = 1e-6 * g.length;
         std::vector<int> lateral, anterior, posterior, surface;
         for (auto [d, f] : faces)
         {
           double x0, y0, z0, x1, y1, z1;
-          gmsh::model::getBoundingBox(2, std::abs(f), x0, y0, z0, x1, y1, z1);
+          gmsh::model::getBoundingBox(dim - 1, std::abs(f), x0, y0, z0, x1, y1,
+                                      z1);
           if (x1 < 10 * tol)
             lateral.push_back(std::abs(f));
-          else if (z1 < 10 * tol)
+          else if (dim == 3 and z1 < 10 * tol)
             anterior.push_back(std::abs(f));
-          else if (z0 > g.length - 10 * tol)
+          else if (dim == 3 and z0 > g.length - 10 * tol)
             posterior.push_back(std::abs(f));
           else
             surface.push_back(std::abs(f));
         }
-        auto group = [](int dim, const std::vector<int>& t, int id,
+        auto group = [](int d, const std::vector<int>& t, int id,
                         const std::string& name)
         {
-          gmsh::model::addPhysicalGroup(dim, t, id);
-          gmsh::model::setPhysicalName(dim, id, name);
+          gmsh::model::addPhysicalGroup(d, t, id);
+          gmsh::model::setPhysicalName(d, id, name);
         };
-        group(2, lateral, 1, "lateral");
-        group(2, anterior, 2, "anterior");
-        group(2, posterior, 3, "posterior");
-        group(2, surface, 4, "surface");
-        group(3, {volume}, 1, "fold");
+        group(dim - 1, lateral, 1, "lateral");
+        if (dim == 3)
+        {
+          group(2, anterior, 2, "anterior");
+          group(2, posterior, 3, "posterior");
+        }
+        group(dim - 1, surface, 4, "surface");
+        group(dim, {body}, 1, "fold");
         gmsh::option::setNumber("Mesh.MeshSizeMax", g.h);
         gmsh::option::setNumber("Mesh.MeshSizeMin", 0.25 * g.h);
-        gmsh::model::mesh::generate(3);
+        gmsh::model::mesh::generate(dim);
       });
 }
 //-----------------------------------------------------------------------------

@@ -52,10 +52,11 @@ struct VocalFoldGeometry
   std::vector<std::array<double, 2>> free_profile() const;
 };
 
-/// Tetrahedral mesh of the fold. Facet groups "lateral" (x = 0, 1),
-/// "anterior" (z = 0, 2), "posterior" (z = length, 3), "surface" (the free
-/// surface, 4); cell group "fold" (1).
-MeshData vocal_fold(MPI_Comm comm, const VocalFoldGeometry& g);
+/// Tetrahedral mesh of the fold (dim 3), or triangle mesh of its coronal
+/// section (dim 2, the profile in z = 0). Facet groups "lateral" (x = 0, 1),
+/// "anterior" (z = 0, 2) and "posterior" (z = length, 3) in 3D only,
+/// "surface" (the free surface, 4); cell group "fold" (1).
+MeshData vocal_fold(MPI_Comm comm, const VocalFoldGeometry& g, int dim = 3);
 
 /// Local cells whose midpoint lies within g.cover of the free surface
 /// (the cover of a body–cover fold)

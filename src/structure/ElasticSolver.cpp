@@ -58,6 +58,9 @@ void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
                "Newton tangent insertion: PETSc COO on a recorded pattern, or "
                "DOLFINx's per-cell MatSetValuesBlockedLocal (the same matrix "
                "to rounding)");
+  p.add("solid.clamped_length", clamped_length,
+        "2D: length of the body clamped at both ends along z (its first "
+        "harmonic, a foundation mu (pi/L)^2 u); 0: plane strain [m]");
 }
 //-----------------------------------------------------------------------------
 void fsai::structure::SolidParameters::validate() const
@@ -72,6 +75,8 @@ void fsai::structure::SolidParameters::validate() const
                 "in [gamma/2, 1/2] (unconditionally stable)", newmark_beta);
   fsai::require(rayleigh_mass >= 0, "--solid.rayleigh_mass", ">= 0",
                 rayleigh_mass);
+  fsai::require(clamped_length >= 0, "--solid.clamped_length",
+                ">= 0 (0: plane strain)", clamped_length);
   fsai::require(rayleigh_stiffness >= 0, "--solid.rayleigh_stiffness", ">= 0",
                 rayleigh_stiffness);
   fsai::require_positive("--solid.newton_rtol", newton_rtol);
@@ -91,6 +96,9 @@ fsai::structure::ElasticSolver::ElasticSolver(
   params.validate();
   fsai::require_positive("solid: time step", dt);
   const int tdim = mesh->topology().dim();
+  fsai::require(tdim == 2 or params.clamped_length == 0,
+                "--solid.clamped_length", "0 on a 3D mesh (2D sections only)",
+                params.clamped_length);
   const int deg = params.degree;
   auto mesh_nc = std::const_pointer_cast<mesh::Mesh>(mesh);
   _V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
@@ -146,7 +154,10 @@ fsai::structure::ElasticSolver::ElasticSolver(
          {"g", _g},
          {"k_c", _k_c},
          {"b_c", _b_c},
-         {"y_c", _y_c}};
+         {"y_c", _y_c},
+         {"kz2", constant(params.clamped_length > 0
+                              ? std::pow(M_PI / params.clamped_length, 2)
+                              : 0.0)}};
   std::map<std::string, std::shared_ptr<const fem::Function<double>>> coeffs
       = {{"u", _u},
          {"u_n", _u_n},

@@ -75,6 +75,11 @@ struct SolidParameters
   /// or "dolfinx" (MatSetValuesBlockedLocal per cell); the same matrix to
   /// rounding
   std::string assembly = "coo";
+  /// 2D only: the section is that of a body of this length clamped at its
+  /// two ends along the third axis (a vocal fold's anterior and posterior
+  /// ends), reduced to the first harmonic along it: an elastic foundation
+  /// μ (π/L)² u (forms/structure.py, "Clamped section"). 0: plane strain
+  double clamped_length = 0.0; ///< L [m]
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
