@@ -114,15 +114,8 @@ int main(int argc, char* argv[])
           fsai::common::ScopedTimer t("modal: mesh");
           return fsai::mesh::vocal_fold(rt.comm(), geo, mp.dim);
         }();
-        std::vector<std::int32_t> fixed;
-        for (const char* g : {"lateral", "anterior", "posterior"})
-        {
-          if (mp.dim == 2 and std::string(g) != "lateral")
-            continue; // a section has no anterior and posterior faces
-          auto f = m.facet_tags->find(m.facet_tag(g));
-          fixed.insert(fixed.end(), f.begin(), f.end());
-        }
-        fsai::structure::ElasticSolver solid(m.mesh, fixed, {}, sp, 1.0);
+        fsai::structure::ElasticSolver solid(
+            m.mesh, fsai::mesh::attached_facets(m), {}, sp, 1.0);
         if (mp.layers == 2)
           solid.set_material(fsai::mesh::cover_cells(*m.mesh, geo), mp.cover);
 

@@ -7,6 +7,7 @@
 #include <dolfinx/mesh/utils.h>
 #include <gmsh.h>
 #include <numeric>
+#include <string>
 
 //-----------------------------------------------------------------------------
 void fsai::mesh::VocalFoldGeometry::bind(fsai::common::Parameters& p)
@@ -136,6 +137,21 @@ fsai::mesh::MeshData fsai::mesh::vocal_fold(MPI_Comm comm,
         gmsh::option::setNumber("Mesh.MeshSizeMin", 0.25 * g.h);
         gmsh::model::mesh::generate(dim);
       });
+}
+//-----------------------------------------------------------------------------
+std::vector<std::int32_t> fsai::mesh::attached_facets(const MeshData& m)
+{
+  std::vector<std::int32_t> facets;
+  const bool solid = m.mesh->topology().dim() == 3;
+  for (const char* g : {"lateral", "anterior", "posterior"})
+  {
+    if (solid or std::string(g) == "lateral")
+    {
+      auto f = m.facet_tags->find(m.facet_tag(g));
+      facets.insert(facets.end(), f.begin(), f.end());
+    }
+  }
+  return facets;
 }
 //-----------------------------------------------------------------------------
 std::vector<std::int32_t>

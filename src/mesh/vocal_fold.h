@@ -58,6 +58,10 @@ struct VocalFoldGeometry
 /// "surface" (the free surface, 4); cell group "fold" (1).
 MeshData vocal_fold(MPI_Comm comm, const VocalFoldGeometry& g, int dim = 3);
 
+/// Local facets where the fold of vocal_fold() is held: "lateral", and in
+/// 3D also "anterior" and "posterior" (a section has no such faces)
+std::vector<std::int32_t> attached_facets(const MeshData& m);
+
 /// Local cells whose midpoint lies within g.cover of the free surface
 /// (the cover of a body–cover fold)
 std::vector<std::int32_t> cover_cells(const dolfinx::mesh::Mesh& mesh,

@@ -75,10 +75,10 @@ void fsai::structure::SolidParameters::validate() const
                 "in [gamma/2, 1/2] (unconditionally stable)", newmark_beta);
   fsai::require(rayleigh_mass >= 0, "--solid.rayleigh_mass", ">= 0",
                 rayleigh_mass);
-  fsai::require(clamped_length >= 0, "--solid.clamped_length",
-                ">= 0 (0: plane strain)", clamped_length);
   fsai::require(rayleigh_stiffness >= 0, "--solid.rayleigh_stiffness", ">= 0",
                 rayleigh_stiffness);
+  fsai::require(clamped_length >= 0, "--solid.clamped_length",
+                ">= 0 (0: plane strain)", clamped_length);
   fsai::require_positive("--solid.newton_rtol", newton_rtol);
   fsai::require(newton_max_it >= 1, "--solid.newton_max_it", ">= 1",
                 newton_max_it);
