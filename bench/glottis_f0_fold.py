@@ -29,9 +29,19 @@ parameters moves f0, without changing any default:
    0.05 mm, or through the middle of its range for a fold that stays
    farther from the axis (f1 = 90 Hz).
 
+3. The limit cycle (stop 43): the f2 = 155 Hz run continued from its
+   0.2 s checkpoint to 0.5 s,
+     mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml
+         --vf.f2 155 --duration 0.5 --stats_from 0.5 --write_every 0
+         --checkpoint-every 5000
+         --restart bench/results/run_glottis_preset_f2_155_05s
+   (a copy of the 0.2 s folder), against the preset's 0.5 s run: the
+   demos' own summaries over t >= 0.25 s.
+
 usage: bench/glottis_f0_fold.py [BUILD_DIR]
 writes bench/results/glottis_f0_fold.csv (reduced model),
-glottis_f0_fold_fe.csv (FE windows) and glottis_f0_fold.png
+glottis_f0_fold_fe.csv (FE windows), glottis_f0_fold_limit.csv (FE limit
+cycles) and glottis_f0_fold.png
 """
 import argparse
 import json
@@ -62,6 +72,8 @@ UNITS = {"vf.f2": " [Hz]", "vf.f1": " [Hz]", "vf.axis_dx": " [mm]", "zeta": "", 
 G_CROSS = 0.05e-3  # [m]: cycle starts (as glottis_limit_cycle.py)
 T_START = 0.03     # [s]
 WINDOW = (0.13, 0.2)  # [s]: cycles starting here
+LIMIT_RUNS = ((100, 155, "run_glottis_preset_f2_155_05s"),
+              (100, 160, "run_glottis_preset_q2_05s"))
 FE_RUNS = ((100, 155, "run_glottis_preset_f2_155_02s"),
            (100, 160, "run_glottis_preset_q2_05s"),
            (100, 170, "run_glottis_preset_f2_170_02s"),
@@ -182,6 +194,33 @@ if fe:
         for a, b in zip(line, line[1:]):
             print(f"df0/d{k[:2]} = {(b['f0_hz'] - a['f0_hz']) / (b[k] - a[k]):.3f} "
                   f"({k[:2]} {a[k]} -> {b[k]} Hz)")
+
+limit = []
+for f1, f2, run in LIMIT_RUNS:
+    path = os.path.join(res, run, "summary.json")
+    if not os.path.exists(path):
+        continue
+    with open(path) as f:
+        s = json.load(f)
+    if s.get("sim_time_s", 0) < 0.5:
+        continue  # not yet at its limit cycle
+    limit.append({"f1_hz": f1, "f2_hz": f2, "cycles": s["cycles"], "f0_hz": s["f0_hz"],
+                  "open_quotient": s["open_quotient"], "q_peak_ls": 1e3 * s["q_peak_m3s"],
+                  "closed_leakage": s["closed_leakage"],
+                  "closes_every_cycle": int(s["closes_every_cycle"]),
+                  "q_peak_drift": s["q_peak_drift"], "period_drift": s["period_drift"]})
+if limit:
+    write_rows(os.path.join(res, "glottis_f0_fold_limit.csv"), limit)
+    print("\nFE scene (the preset), limit cycle: the demo's summary over t >= 0.25 s of 0.5 s")
+    print_markdown_table([
+        ("f1 [Hz]", lambda r: f"{r['f1_hz']}"), ("f2 [Hz]", lambda r: f"{r['f2_hz']}"),
+        ("cycles", lambda r: f"{r['cycles']}"), ("f0 [Hz]", lambda r: f"{r['f0_hz']:.2f}"),
+        ("OQ", lambda r: f"{r['open_quotient']:.3f}"),
+        ("peak flow [l/s]", lambda r: f"{r['q_peak_ls']:.4f}"),
+        ("leakage", lambda r: f"{r['closed_leakage']:.2%}"),
+        ("closes every cycle", lambda r: "yes" if r["closes_every_cycle"] else "no"),
+        ("drift peak / period", lambda r: f"{r['q_peak_drift']:+.2%} / {r['period_drift']:+.2%}")],
+        limit)
 
 if rows:
     import matplotlib  # (only for the picture)

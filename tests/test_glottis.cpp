@@ -277,6 +277,20 @@ TEST_CASE("Limit-cycle measures of a known waveform", "[glottis]")
   REQUIRE(fade.cycles == 12);
   CHECK(fade.q_peak_drift == Approx(-0.06 / (1 - 0.0675)).epsilon(1e-3));
   CHECK(std::abs(fade.period_drift) < 1e-4);
+  // A dip in the open phase that crosses the mean (the f2 = 155 Hz fold's
+  // closing cycle has one, 6 µm below): g = c + a sin θ − 1.1 a e^{−((θ −
+  // π/2)/0.25)²} per period, down to 0.4 mm at θ = π/2 against a mean of
+  // 0.43 mm. Still one cycle per period
+  for (std::size_t k = 0; k < t.size(); ++k)
+  {
+    const double th = 2 * M_PI * f * t[k];
+    const double ph = std::fmod(th, 2 * M_PI) - M_PI / 2;
+    gap[k] = c + a * std::sin(th) - 1.1 * a * std::exp(-ph * ph / 0.0625);
+    Q[k] = std::max(0.0, gap[k]);
+  }
+  const auto dip = cycle_stats(t, gap, Q, 0.0);
+  CHECK(dip.f0_hz == Approx(f).epsilon(1e-3));
+  CHECK(dip.closes_every_cycle);
 }
 
 TEST_CASE("Reduced model: stable below onset, self-sustained closing "

@@ -1,7 +1,9 @@
 // Copyright (C) 2026 fsai developers
 //
 // Limit-cycle measures of the glottis scene from its time series: f0 from
-// the upward mean crossings of the gap g(t), and per cycle whether the
+// the upward mean crossings of the gap g(t) (each after the gap has been
+// a quarter of its amplitude below the mean: a dip of the open phase
+// across the mean is not a cycle), and per cycle whether the
 // glottis closed (g ≤ g_closed: the closure threshold g_min of the scene,
 // where the FE flow boundary stops and the porous region takes over), the
 // open quotient (share of time with g > g_closed), the peak flow and the
