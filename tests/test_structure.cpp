@@ -81,12 +81,13 @@ TEST_CASE("Clamped section: plane-strain modes shifted by (mu/rho)(pi/L)^2, "
   // also clamped at both ends, and its section in 2D, plane strain and
   // clamped (forms/structure.py, "Clamped section")
   const fsai::mesh::VocalFoldGeometry geo;
+  const fsai::structure::Material mat{8e3, 0.4, 1000.0};
   auto frequencies = [&](int dim, double clamped_length)
   {
     const auto m = fsai::mesh::vocal_fold(MPI_COMM_WORLD, geo, dim);
     SolidParameters p;
     p.degree = 2;
-    p.material = {8e3, 0.4, 1000.0};
+    p.material = mat;
     p.clamped_length = clamped_length;
     ElasticSolver solid(m.mesh, fsai::mesh::attached_facets(m), {}, p, 1.0);
     std::vector<double> f;
@@ -101,7 +102,6 @@ TEST_CASE("Clamped section: plane-strain modes shifted by (mu/rho)(pi/L)^2, "
   REQUIRE(section.size() == 2);
   REQUIRE(fold.size() == 2);
   // A uniform μ/ρ: the same mode shapes, ω² raised by (μ/ρ)(π/L)²
-  const fsai::structure::Material mat{8e3, 0.4, 1000.0};
   const double shift = mat.mu() / mat.rho * std::pow(M_PI / geo.length, 2);
   for (int i = 0; i < 2; ++i)
   {
