@@ -20,9 +20,11 @@ parameters moves f0, without changing any default:
    f2 = 155 and 170 Hz, and with f1 = 90 Hz, from rest to 0.2 s:
      mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml
          --duration 0.2 --stats_from 0.5 --write_every 0
-         --checkpoint-every 5000 --vf.f2 F2 (or --vf.f1 F1)
+         --checkpoint-every 5000 --vf.f2 F2 (or --vf.f1 F1 --vf.f2 160)
          --output bench/results/run_glottis_preset_f2_F2_02s (f1_F1)
-   against the preset's own run (100 / 160 Hz, run_glottis_preset_q2_05s)
+   (the preset's f2 was 160 Hz until stop 44; it is 155 Hz since, so
+   --vf.f2 155 is now the preset itself) against the preset's stop 40 run
+   (100 / 160 Hz, run_glottis_preset_q2_05s)
    over the same cycles: those starting in [0.13, 0.2) s (the late window
    of the README's convergence study; the preset's limit cycle, t >= 0.25 s,
    is 0.5 % above it in f0). Cycles start where the half-gap rises through

@@ -53,6 +53,17 @@ at Δt 0.5e-5 (case h0175_dt05_z02_c75_02s: the jet CFL of the other two
 levels) to the late window, as a third level of its own; it reached 0.2 s
 in stop 40 (four legs from its checkpoints, logs run_restart_a-d.log).
 
+Stop 44: the preset's fold has its upper mode at 155 Hz instead of 160 Hz
+(demos/glottis/closing_cycle.toml, the male-range f0). Its mesh/Δt check,
+the preset (degree 2, 2 ranks) from rest to 0.2 s, compared in the late
+window [0.13, 0.2] s as above:
+  mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml
+      --duration 0.2 --stats_from 0.5 --write_every 0 --checkpoint-every 4000
+      [--dt 5e-6 | --fe.h_gap 0.025e-3 --fe.h_far 0.25e-3 --dt 0.7e-5]
+      --output bench/results/run_glottis_f2_155_{dt05,h025_dt07}_02s
+against run_glottis_preset_f2_155_02s (stop 41, the same command with
+--vf.f2 155 before it was the preset's).
+
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
                                           and glottis_fe_three_levels.csv)
 """
@@ -121,6 +132,11 @@ RUNS["closing, h 0.035 mm, late"] = (("dt 1e-5", "run_glottis_h035_dt1_z02_c75_0
                                      ("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75_02s"),
                                      # stop 39: the finest level at the others' jet CFL
                                      ("h 0.0175 mm, dt 0.5e-5", "run_glottis_h0175_dt05_z02_c75_02s"))
+# stop 44: the preset with f2 = 155 Hz, its Δt/2 and its 0.025 mm level
+WINDOWS["f2 155 Hz (preset), late"] = (0.13, 0.2)
+RUNS["f2 155 Hz (preset), late"] = (("dt 1e-5", "run_glottis_preset_f2_155_02s"),
+                                    ("dt 5e-6", "run_glottis_f2_155_dt05_02s"),
+                                    ("h 0.025 mm, dt 0.7e-5", "run_glottis_f2_155_h025_dt07_02s"))
 # stop 38: the finest level stopped at 0.155 s; the late window cut there
 RUNS["closing, h 0.035 mm, late to 0.155 s"] = RUNS["closing, h 0.035 mm, late"]
 RUNS["closing, h 0.035 mm"] += (("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75"),)

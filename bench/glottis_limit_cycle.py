@@ -23,9 +23,10 @@ cycle by cycle, long enough to see where it goes:
 Runs: the reference (h_gap 0.035 mm, Δt 1e-5, quadrature degree 4)
 continued to 0.5 s from its 0.2 s checkpoint (--restart, log
 run_restart_05s.log), the preset demos/glottis/closing_cycle.toml as
-committed (the same mesh and Δt at quadrature degree 2) from rest to 0.5 s
-(stop 40:
-  mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml
+committed in stop 40 (the same mesh and Δt at quadrature degree 2, the
+fold's upper mode at 160 Hz: since stop 44 the preset's is 155 Hz) from
+rest to 0.5 s (stop 40:
+  mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml --vf.f2 160
       --duration 0.5 --stats_from 0.5 --write_every 0
       --checkpoint-every 10000 --output bench/results/run_glottis_preset_q2_05s
 ), the Δt/2 and

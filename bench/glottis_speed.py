@@ -10,7 +10,9 @@ at which the README's mesh/Δt ladder was run). The machines here drift in speed
 between runs, so the two are run in interleaved pairs (4, 2, 4, 2, ...) and
 compared as ratios within a pair; the order alternates from pair to pair
 (4, 2, then 2, 4), as the first run of a pair tends to be the slower
-(stops 31 and 38). Each run:
+(stops 31 and 38). The runs of stops 38-40 had the fold's upper mode at
+160 Hz, the preset's value before stop 44 (now 155 Hz: the same mesh, Δt
+and solvers; f0 2 % lower). Each run:
 
   mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml
       --duration 0.1 --write_every 0 --fluid.quadrature_degree Q --output DIR
