@@ -11,7 +11,7 @@ writes bench/results/NAME.csv and .png
 solvers: direct = MUMPS LU; iterative-amg = FGMRES + Schur fieldsplit,
 BoomerAMG on both blocks; iterative-ilu = the same with block-Jacobi ILU(0)
 on the velocity block; direct-q2 = MUMPS LU with --fluid.quadrature_degree 2
-(stop 31: `--solvers direct direct-q2 --levels 1 --dts 0.005 --name
+(`--solvers direct direct-q2 --levels 1 --dts 0.005 --name
 dfg_2d2_quadrature`)
 """
 import argparse

@@ -35,7 +35,7 @@ REF_FSI3_2006 = {"uy_A_m": (0.00148, 0.03438, 5.3), "drag_N_per_m": (457.3, 22.6
 # The fluid's fieldsplit preconditioner kept for 10 solves, the Krylov
 # solve tightened so that the coupling residual does not see its error
 # (runs tagged _lag10; the untagged FSI3 runs rebuilt it for every solve
-# at ksp_rtol 1e-8, and all runs made before stop 18 factorised the solid
+# at ksp_rtol 1e-8, and all runs factorised the solid
 # with MUMPS across the ranks instead of PETSc's LU on every rank)
 LAG = ["--fluid.pc_lag", "10", "--fluid.ksp_rtol", "1e-10"]
 

@@ -8,12 +8,12 @@ does not reach the axis (bench/glottis_fe_convergence.py). This study
 varies what the scene leaves free (p_sub, rest gap, modal damping) on that
 mesh and reports, per 5 ms window, the smallest and largest half-gap: the
 start-up always overshoots into contact, so only the windows after
-t_settle (default 30 ms) say whether the cycle closes. Stop 22 adds the
+t_settle (default 30 ms) say whether the cycle closes. The study adds the
 time step this mesh needs (Δt = 1e−5, cases dt1_*; dt05_* is Δt/2): with
 ζ = 0.02 the cycle closes in every cycle there once the mesh motion's gap
 columns stop at g0 + 0.75 R (dt1_z02_c75; the g0 + R runs invert a cell).
-h025_dt1_z02_c75 (stop 23) is its mesh check: h_gap 0.025 mm, h_far 0.25 mm;
-stop 32's cases change one size of the mesh at a time; stop 33's
+h025_dt1_z02_c75 is its mesh check: h_gap 0.025 mm, h_far 0.25 mm;
+the cases change one size of the mesh at a time; the next
 h025_dt07_z02_c75 refines the mesh as h025 and Δt by 0.7 together (the same
 CFL number), continued to 0.1 s from its step-8000 checkpoint (--restart,
 log run_restart.log).
@@ -45,13 +45,13 @@ exe = os.path.join(args.build, "demos", "fsai_glottis")
 res = os.path.join(here, "results")
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 MESH = ["--fe.h_gap", "0.035e-3", "--fe.h_far", "0.35e-3"]
-# the closing cycle's time step and damping (stop 22)
+# the closing cycle's time step and damping
 CLOSING = ["--dt", "1e-5", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]
 
 # case: (duration [s], options). "conv_fine_01_load" is the convergence
 # study's run at the scene's defaults (0.1 s, stored under that name)
 CASES = {
-    # (stop 21's runs, made when the algebraic gap columns reached g0 + R)
+    # (the runs, made when the algebraic gap columns reached g0 + R)
     "default": (0.1, ["--closure.gap_columns", "1"]),
     "z02": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02", "--closure.gap_columns", "1"]),
     "z02_g15": (0.04, ["--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
@@ -66,73 +66,73 @@ CASES = {
     # with the algebraic gap columns up to g0 + 0.75 R (the new default;
     # the two runs above used g0 + R)
     "dt1_z02_c75": (0.1, CLOSING + ["--checkpoint-every", "2000"]),
-    # the same configuration again with stop 26's faster solvers (OpenBLAS,
+    # the same configuration again with the faster solvers (OpenBLAS,
     # MUMPS without scaling, superposed mesh motion, wall forces from the
     # wall cells): its wall time, and the run-to-run scatter of 2-rank runs
     "dt1_z02_c75_s26": (0.1, CLOSING),
     # its time-step check (Δt/2, the first 0.06 s)
     "dt05_z02_c75": (0.06, ["--dt", "5e-6", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02"]),
-    # its mesh check (stop 23): h_gap 0.025 mm, h_far 0.25 mm (the later
+    # its mesh check: h_gap 0.025 mm, h_far 0.25 mm (the later
     # options override MESH), the first 0.06 s; continued to 0.1 s in stop
     # 26 from its step-6000 checkpoint (--restart, log run_restart.log)
     "h025_dt1_z02_c75": (0.1, CLOSING + ["--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
                                          "--checkpoint-every", "2000"]),
-    # stop 31: SUPG/PSPG τ without its transient term (2/Δt)² (Hsu et al.
+    # SUPG/PSPG τ without its transient term (2/Δt)² (Hsu et al.
     # 2010; it halved the held glottis's Δt dependence): the first 0.06 s.
     # It failed: coupling stalls near closure, a cell inverted at 26 ms
     "dt1_z02_c75_taus": (0.06, CLOSING + ["--fluid.tau_dt=false", "--checkpoint-every", "2000"]),
-    # stop 31: the cell integrals at quadrature degree 2 (3 points per
+    # the cell integrals at quadrature degree 2 (3 points per
     # triangle instead of 6; the Galerkin terms still exact)
     "dt1_z02_c75_q2": (0.1, CLOSING + ["--fluid.quadrature_degree", "2"]),
-    # stop 32: which half of the mesh check moves the peak flow? Each
+    # which half of the mesh check moves the peak flow? Each
     # refines one of the two sizes that h025_dt1_z02_c75 refined together
     # (the first 0.06 s, compared in t ∈ [0.03, 0.06] s)
     "hgap025_dt1_z02_c75": (0.06, CLOSING + ["--fe.h_gap", "0.025e-3"]),
     "hfar025_dt1_z02_c75": (0.06, CLOSING + ["--fe.h_far", "0.25e-3"]),
-    # stop 32: the subglottal channel at 0.7 mm from the inlet to 6 mm
+    # the subglottal channel at 0.7 mm from the inlet to 6 mm
     # before the fold (--fe.h_inlet; 28764 instead of 31491 unknowns)
     "dt1_z02_c75_in07": (0.06, CLOSING + ["--fe.h_inlet", "0.7e-3"]),
-    # stop 32: the cheapest variant, both: the subglottal channel at
+    # the cheapest variant, both: the subglottal channel at
     # 0.7 mm and the cell integrals at degree 2 (0.1 s)
     "dt1_z02_c75_in07_q2": (0.1, CLOSING + ["--fe.h_inlet", "0.7e-3",
                                             "--fluid.quadrature_degree", "2"]),
-    # stop 32: the jet region (y ≤ 4 mm downstream of the fold's inferior
+    # the jet region (y ≤ 4 mm downstream of the fold's inferior
     # attachment) at 0.25 mm, h_far 0.35 mm elsewhere: is the far field's
     # sensitivity (hfar025 above) the jet's?
     "dt1_z02_c75_jet025": (0.06, CLOSING + ["--fe.h_jet", "0.25e-3"]),
-    # stop 33: mesh and step refined together at the reference's CFL
+    # mesh and step refined together at the reference's CFL
     # (h_gap 0.025 / h_far 0.25 mm as h025_dt1_z02_c75, Δt 0.7e-5 = 0.7 ×
     # 1e-5 for the sizes' ratio 0.714): refining h alone (h025, −2.6 %) and
     # Δt alone (dt05, +2.5 %) moved the peak flow in opposite directions
     "h025_dt07_z02_c75": (0.06, CLOSING + ["--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
                                           "--dt", "0.7e-5", "--checkpoint-every", "2000"]),
-    # stop 34: the third level of that series, h_gap 0.0175 / h_far 0.175 mm
+    # the third level of that series, h_gap 0.0175 / h_far 0.175 mm
     # (× 0.7 again; 120735 unknowns) at Δt 0.7e-5: the CFL of h025_dt1
     # (≈ 16 at 40 m/s), whose cycle h025_dt07 matched within 0.1 %. Is the
     # 0.025 mm mesh converged where the 0.035 mm one missed by 0.5 point?
     "h0175_dt07_z02_c75": (0.1, CLOSING + ["--fe.h_gap", "0.0175e-3", "--fe.h_far", "0.175e-3",
                                            "--dt", "0.7e-5", "--checkpoint-every", "1000"]),
-    # stop 35: the reference cycle continued to 0.2 s (the same run as
+    # the reference cycle continued to 0.2 s (the same run as
     # dt1_z02_c75, longer): the per-cycle peak flow of every mesh level
     # still swings by ±5 % in [0.05, 0.1] s with the same pattern on all
     # of them, a start-up transient that has not died out (ζ = 0.02)
     "dt1_z02_c75_02s": (0.2, CLOSING + ["--checkpoint-every", "2000"]),
-    # stop 35: h025_dt07_z02_c75 continued from its step-14000 checkpoint
+    # h025_dt07_z02_c75 continued from its step-14000 checkpoint
     # (t = 0.098 s) towards 0.2 s, in a copy of its folder (--restart, log
     # run_restart_02s.log), for the settled window
     "h025_dt07_z02_c75_02s": (0.2, CLOSING + ["--fe.h_gap", "0.025e-3", "--fe.h_far", "0.25e-3",
                                              "--dt", "0.7e-5", "--checkpoint-every", "2000"]),
-    # stop 36: the reference's time-step check (Δt/2) to 0.2 s, for the
+    # the reference's time-step check (Δt/2) to 0.2 s, for the
     # late window [0.13, 0.2] s (dt05_z02_c75 above ran the first 0.06 s)
     "dt05_z02_c75_02s": (0.2, ["--dt", "5e-6", "--vf.zeta1", "0.02", "--vf.zeta2", "0.02",
                                "--checkpoint-every", "4000"]),
-    # stops 36-37: h0175_dt07_z02_c75 continued from its step-14000
+    # h0175_dt07_z02_c75 continued from its step-14000
     # checkpoint (t = 0.098 s) to 0.2 s in a copy of its folder (--restart,
     # stopped and continued twice: logs run_restart_02s*.log), for the late
     # window of all three levels
     "h0175_dt07_z02_c75_02s": (0.2, CLOSING + ["--fe.h_gap", "0.0175e-3", "--fe.h_far", "0.175e-3",
                                                "--dt", "0.7e-5", "--checkpoint-every", "1000"]),
-    # stop 38: the finest level to 0.2 s again, from rest (the checkpoint
+    # the finest level to 0.2 s again, from rest (the checkpoint
     # of h0175_dt07_z02_c75_02s was lost with the machine at 0.155 s), now
     # at Δt 0.5e-5: the jet's CFL √(2 p_sub/ρ) Δt / h_gap of the other two
     # levels (12.8 and 12.5; Δt 0.7e-5 gave this mesh 17.9, near the ≈ 20
@@ -142,7 +142,7 @@ CASES = {
     # -f; checkpoint* is ignored) and it goes on with --restart
     "h0175_dt05_z02_c75_02s": (0.2, CLOSING + ["--fe.h_gap", "0.0175e-3", "--fe.h_far", "0.175e-3",
                                                "--dt", "0.5e-5", "--checkpoint-every", "2000"]),
-    # stop 37: the reference continued from 0.2 to 0.5 s (a copy of
+    # the reference continued from 0.2 to 0.5 s (a copy of
     # dt1_z02_c75_02s's folder, --restart, log run_restart_05s.log): does
     # the cycle reach a limit cycle? (bench/glottis_limit_cycle.py)
     "dt1_z02_c75_05s": (0.5, CLOSING + ["--checkpoint-every", "5000"]),

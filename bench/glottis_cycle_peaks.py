@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The closing cycle's peak glottal flow, cycle by cycle (stop 35).
+"""The closing cycle's peak glottal flow, cycle by cycle.
 
 In t in [0.05, 0.1] s the peak flow of the closing cycle (ζ1 = ζ2 = 0.02,
 bench/glottis_closure_converged.py) swings by about ±5 % from cycle to
@@ -55,18 +55,18 @@ RUNS = (("h 0.035 mm, dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
         ("h 0.025 mm, dt 0.7e-5, to 0.2 s", "run_glottis_h025_dt07_z02_c75_02s"),
         ("h 0.035 mm, dt 5e-6, to 0.2 s", "run_glottis_h035_dt05_z02_c75_02s"),
         ("h 0.0175 mm, dt 0.7e-5, to 0.2 s", "run_glottis_h0175_dt07_z02_c75_02s"),
-        # stop 39: the finest level again from rest at the others' jet CFL
-        # (reached 0.2 s in stop 40)
+        # the finest level again from rest at the others' jet CFL
+        # (reached 0.2 s)
         ("h 0.0175 mm, dt 0.5e-5, to 0.2 s", "run_glottis_h0175_dt05_z02_c75_02s"))
 WINDOW = 0.025  # [s]: the long run's windows
-# stop 38: the cycles that start in [0.1, 0.15) s, which every run to 0.2 s
+# the cycles that start in [0.1, 0.15) s, which every run to 0.2 s
 # completes (the finest level's ended at 0.155 s)
 LATE = (0.1, 0.15)  # [s]
-# stop 39: and the cycles that start in [0.1, 0.19) s, for the runs that
+# and the cycles that start in [0.1, 0.19) s, for the runs that
 # reach 0.2 s (a cycle is 6.5 ms)
 LATE_FULL = (0.1, 0.19)  # [s]
-# stop 39: the five cycles the finest level at dt 0.5e-5 had completed when
-# it was paused at 0.14 s (the first rows of the README's table)
+# the five cycles the finest level at dt 0.5e-5 had completed when
+# it was paused at 0.14 s (the first rows of docs/glottis.md's table)
 LATE_PARTIAL = (0.095, 0.125)  # [s]
 
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Why the closing cycle's flow still drifts at 0.2 s (stop 36).
+"""Why the closing cycle's flow still drifts at 0.2 s.
 
 The closing cycle (bench/glottis_closure_converged.py, ζ = 0.02) settles in
 its fold motion by 0.13 s, but its cycle-mean glottal flow keeps falling,

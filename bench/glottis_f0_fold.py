@@ -1,10 +1,9 @@
 #!/usr/bin/python3
-"""What sets f0 of the closing cycle? The fold's parameters one at a time
-(stop 41).
+"""What sets f0 of the closing cycle? The fold's parameters one at a time.
 
-Issue 7 asks for a 2-DOF fold with in-vacuo modes ≈ 100 and 160 Hz and a
+The design asks for a 2-DOF fold with in-vacuo modes ≈ 100 and 160 Hz and a
 limit cycle in the male range 85-155 Hz. The FE scene's limit cycle is
-155.29 Hz on the preset's mesh and ≈ 156-157 Hz mesh-converged (README,
+155.29 Hz on the preset's mesh and ≈ 156-157 Hz mesh-converged (docs/glottis.md,
 "f0 and the male range"). This script measures how far each of the fold's
 parameters moves f0, without changing any default:
 
@@ -22,16 +21,16 @@ parameters moves f0, without changing any default:
          --duration 0.2 --stats_from 0.5 --write_every 0
          --checkpoint-every 5000 --vf.f2 F2 (or --vf.f1 F1 --vf.f2 160)
          --output bench/results/run_glottis_preset_f2_F2_02s (f1_F1)
-   (the preset's f2 was 160 Hz until stop 44; it is 155 Hz since, so
-   --vf.f2 155 is now the preset itself) against the preset's stop 40 run
+   (the preset's f2 was 160 Hz; it is 155 Hz since, so
+   --vf.f2 155 is now the preset itself) against the preset's earlier run
    (100 / 160 Hz, run_glottis_preset_q2_05s)
    over the same cycles: those starting in [0.13, 0.2) s (the late window
-   of the README's convergence study; the preset's limit cycle, t >= 0.25 s,
+   of the convergence study (docs/glottis.md); the preset's limit cycle, t >= 0.25 s,
    is 0.5 % above it in f0). Cycles start where the half-gap rises through
    0.05 mm, or through the middle of its range for a fold that stays
    farther from the axis (f1 = 90 Hz).
 
-3. The limit cycle (stop 43): the f2 = 155 Hz run continued from its
+3. The limit cycle: the f2 = 155 Hz run continued from its
    0.2 s checkpoint to 0.5 s,
      mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml
          --vf.f2 155 --duration 0.5 --stats_from 0.5 --write_every 0

@@ -3,7 +3,7 @@
 1200 Pa): f0, peak glottal flow and the gap's range for the default run
 (Delta t = 2e-5 s, h_gap = 0.05 mm, h_far = 0.5 mm), Delta t halved, and
 the mesh refined by 1/0.7 (h_gap = 0.035 mm, h_far = 0.35 mm), in two
-windows: t in [0.025, 0.05] s (still growing: the runs of stop 14, 0.05 s
+windows: t in [0.025, 0.05] s (still growing: the runs, 0.05 s
 long) and t in [0.05, 0.1] s (the limit cycle: 0.1 s runs). f0 from the
 upward crossings of the mean gap, as fsai_glottis computes it. The runs
 (2 ranks) are made by
@@ -14,7 +14,7 @@ upward crossings of the mean gap, as fsai_glottis computes it. The runs
       --output .../run_glottis_conv_fine
   (the same with --duration 0.1 --write_every 0: run_glottis_conv_dt1e-5_01,
    run_glottis_conv_fine_01; these four with --coupling.predictor displacement,
-   the default before stop 21)
+   the default)
 
 The study on the 0.035 mm mesh (the coarsest whose forces are converged at
 a held glottis, bench/glottis_static_flow.py), 0.1 s at 2 ranks with
@@ -24,36 +24,36 @@ a held glottis, bench/glottis_static_flow.py), 0.1 s at 2 ranks with
   --fe.h_gap 0.025e-3 --fe.h_far 0.25e-3                run_glottis_h025 (not run yet)
 and run_glottis_conv_fine_01 (the displacement predictor) as the check that
 the load predictor's run is the same coupled solution. The closing cycle on
-that mesh (ζ1 = ζ2 = 0.02, Δt 1e-5 for 0.1 s and 5e-6 for 0.06 s; stop 22;
-h_gap 0.025 mm / h_far 0.25 mm at Δt 1e-5 for 0.06 s, stop 23) is compared
+that mesh (ζ1 = ζ2 = 0.02, Δt 1e-5 for 0.1 s and 5e-6 for 0.06 s;
+h_gap 0.025 mm / h_far 0.25 mm at Δt 1e-5 for 0.06 s) is compared
 in [0.03, 0.06] s (runs of bench/glottis_closure_converged.py), with
-stop 32's single changes of that mesh (one size refined, the subglottal
-channel coarser, the jet region finer) and stop 33's refinement of h and Δt
+the single changes of that mesh (one size refined, the subglottal
+channel coarser, the jet region finer) and the refinement of h and Δt
 together at the same CFL (h_gap 0.025 mm, h_far 0.25 mm, Δt 0.7e-5).
 
-Stop 34 adds the third level of that series, h_gap 0.0175 mm / h_far
+The study adds the third level of that series, h_gap 0.0175 mm / h_far
 0.175 mm at Δt 0.7e-5 (case h0175_dt07_z02_c75), and the observed order of
 convergence with the grid convergence index of the three levels 0.035,
 0.025, 0.0175 mm (Celik et al. 2008, J. Fluids Eng. 130:078001, eqs. 1-8;
 the Δt of the levels, 1e-5 / 0.7e-5 / 0.7e-5, is treated as converged:
 the 0.025 mm mesh's cycle at Δt 1e-5 and 0.7e-5 agree within 0.1-0.3 %).
 
-Stop 35 adds the window t in [0.13, 0.2] s ("late": the fold's motion has
+The study adds the window t in [0.13, 0.2] s ("late": the fold's motion has
 settled, the flow still drifts slowly) for the reference and the 0.025 mm
 level run to 0.2 s (bench/glottis_cycle_peaks.py shows why [0.05, 0.1] s
-is not settled). Stop 36 adds the reference's Δt/2 (5e-6) run to 0.2 s to
+is not settled). The study adds the reference's Δt/2 (5e-6) run to 0.2 s to
 that window (case dt05_z02_c75_02s of glottis_closure_converged.py).
-Stop 37 adds the finest level run to 0.2 s (case h0175_dt07_z02_c75_02s)
+The study adds the finest level run to 0.2 s (case h0175_dt07_z02_c75_02s)
 to that window, and the three levels' observed order in it. That run ended
-at t = 0.155 s (its checkpoint was lost with the machine, stop 38), so
-stop 38 adds the window t in [0.13, 0.155] s, the part of the late window
+at t = 0.155 s (its checkpoint was lost with the machine), so
+The study adds the window t in [0.13, 0.155] s, the part of the late window
 that every level reaches (3-4 cycles; bench/glottis_cycle_peaks.py pairs
-its cycles one by one). Stop 39 adds the finest level run again from rest
+its cycles one by one). The study adds the finest level run again from rest
 at Δt 0.5e-5 (case h0175_dt05_z02_c75_02s: the jet CFL of the other two
 levels) to the late window, as a third level of its own; it reached 0.2 s
-in stop 40 (four legs from its checkpoints, logs run_restart_a-d.log).
+in four legs ( from its checkpoints, logs run_restart_a-d.log).
 
-Stop 44: the preset's fold has its upper mode at 155 Hz instead of 160 Hz
+The preset's fold has its upper mode at 155 Hz instead of 160 Hz
 (demos/glottis/closing_cycle.toml, the male-range f0). Its mesh/Δt check,
 the preset (degree 2, 2 ranks) from rest to 0.2 s, compared in the late
 window [0.13, 0.2] s as above:
@@ -61,7 +61,7 @@ window [0.13, 0.2] s as above:
       --duration 0.2 --stats_from 0.5 --write_every 0 --checkpoint-every 4000
       [--dt 5e-6 | --fe.h_gap 0.025e-3 --fe.h_far 0.25e-3 --dt 0.7e-5]
       --output bench/results/run_glottis_f2_155_{dt05,h025_dt07}_02s
-against run_glottis_preset_f2_155_02s (stop 41, the same command with
+against run_glottis_preset_f2_155_02s (the same command with
 --vf.f2 155 before it was the preset's).
 
 usage: bench/glottis_fe_convergence.py   (writes bench/results/glottis_fe_convergence.csv
@@ -91,64 +91,64 @@ RUNS = {"growing": (("default", "run_glottis_fe_default"),
                        ("h 0.025 mm", "run_glottis_h025")),
         # the closing cycle on that mesh (bench/glottis_closure_converged.py,
         # cases dt1_z02_c75 and dt05_z02_c75: Δt 1e-5 and 5e-6, ζ 0.02)
-        # ("repeat": the same configuration run again in stop 26 with the
+        # ("repeat": the same configuration run again with the
         # faster solvers, which change only round-off: 2-rank runs are not
         # bitwise reproducible, and this measures what that does)
         "closing, h 0.035 mm": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
                                 ("dt 5e-6", "run_glottis_h035_dt05_z02_c75"),
                                 ("h 0.025 mm", "run_glottis_h025_dt1_z02_c75"),
                                 ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26"),
-                                # stop 32: one of the two sizes refined at a time
+                                # one of the two sizes refined at a time
                                 ("h_gap 0.025 mm only", "run_glottis_h035_hgap025_dt1_z02_c75"),
                                 ("h_far 0.25 mm only", "run_glottis_h035_hfar025_dt1_z02_c75"),
-                                # stop 32: the subglottal channel coarser (0.7 mm)
+                                # the subglottal channel coarser (0.7 mm)
                                 ("h_inlet 0.7 mm", "run_glottis_h035_dt1_z02_c75_in07"),
                                 ("h_jet 0.25 mm", "run_glottis_h035_dt1_z02_c75_jet025"),
-                                # stop 33: h and Δt refined together at the
+                                # h and Δt refined together at the
                                 # same CFL (h × 0.714, Δt × 0.7)
                                 ("h 0.025 mm, dt 0.7e-5", "run_glottis_h025_dt07_z02_c75")),
         "closing, h 0.035 mm, settled": (("dt 1e-5", "run_glottis_h035_dt1_z02_c75"),
                                          ("dt 1e-5, repeat", "run_glottis_h035_dt1_z02_c75_s26"),
-                                         # continued from 0.06 to 0.1 s in stop 26
+                                         # continued from 0.06 to 0.1 s
                                          ("h 0.025 mm", "run_glottis_h025_dt1_z02_c75"),
-                                         # stop 32: --fe.h_inlet 0.7e-3 and
+                                         # --fe.h_inlet 0.7e-3 and
                                          # --fluid.quadrature_degree 2
                                          ("h_inlet 0.7 mm, degree 2",
                                           "run_glottis_h035_dt1_z02_c75_in07_q2"),
-                                         # stop 33, continued from 0.056 to 0.1 s
+                                         # continued from 0.056 to 0.1 s
                                          ("h 0.025 mm, dt 0.7e-5",
                                           "run_glottis_h025_dt07_z02_c75"),
-                                         # stop 34: the third level
+                                         # the third level
                                          ("h 0.0175 mm, dt 0.7e-5",
                                           "run_glottis_h0175_dt07_z02_c75"))}
-# stop 35: [0.05, 0.1] s is not settled (bench/glottis_cycle_peaks.py); the
+# [0.05, 0.1] s is not settled (bench/glottis_cycle_peaks.py); the
 # fold's motion is from 0.13 s on, though the flow still drifts. The
 # reference and the 0.025 mm level continued to 0.2 s
 RUNS["closing, h 0.035 mm, late"] = (("dt 1e-5", "run_glottis_h035_dt1_z02_c75_02s"),
                                      ("h 0.025 mm, dt 0.7e-5", "run_glottis_h025_dt07_z02_c75_02s"),
-                                     # stop 36: the reference's Δt/2 to 0.2 s
+                                     # the reference's Δt/2 to 0.2 s
                                      ("dt 5e-6", "run_glottis_h035_dt05_z02_c75_02s"),
-                                     # stop 37: the finest level to 0.2 s
+                                     # the finest level to 0.2 s
                                      ("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75_02s"),
-                                     # stop 39: the finest level at the others' jet CFL
+                                     # the finest level at the others' jet CFL
                                      ("h 0.0175 mm, dt 0.5e-5", "run_glottis_h0175_dt05_z02_c75_02s"))
-# stop 44: the preset with f2 = 155 Hz, its Δt/2 and its 0.025 mm level
+# the preset with f2 = 155 Hz, its Δt/2 and its 0.025 mm level
 WINDOWS["f2 155 Hz (preset), late"] = (0.13, 0.2)
 RUNS["f2 155 Hz (preset), late"] = (("dt 1e-5", "run_glottis_preset_f2_155_02s"),
                                     ("dt 5e-6", "run_glottis_f2_155_dt05_02s"),
                                     ("h 0.025 mm, dt 0.7e-5", "run_glottis_f2_155_h025_dt07_02s"))
-# stop 38: the finest level stopped at 0.155 s; the late window cut there
+# the finest level stopped at 0.155 s; the late window cut there
 RUNS["closing, h 0.035 mm, late to 0.155 s"] = RUNS["closing, h 0.035 mm, late"]
 RUNS["closing, h 0.035 mm"] += (("h 0.0175 mm, dt 0.7e-5", "run_glottis_h0175_dt07_z02_c75"),)
 # the three levels (h_gap [mm], run) for the observed order, coarse to fine,
 # and the windows they are compared in
 LEVELS = ((0.035, "run_glottis_h035_dt1_z02_c75"), (0.025, "run_glottis_h025_dt07_z02_c75"),
           (0.0175, "run_glottis_h0175_dt07_z02_c75"))
-# stop 37: the three levels continued to 0.2 s, compared late in the run as
+# the three levels continued to 0.2 s, compared late in the run as
 # well
 LEVELS_02S = ((0.035, "run_glottis_h035_dt1_z02_c75_02s"), (0.025, "run_glottis_h025_dt07_z02_c75_02s"),
               (0.0175, "run_glottis_h0175_dt07_z02_c75_02s"))
-# stop 39: the finest level again from rest at Δt 0.5e-5, the jet CFL of the
+# the finest level again from rest at Δt 0.5e-5, the jet CFL of the
 # other two levels (12.8 / 12.5; Δt 0.7e-5 gave it 17.9), to 0.2 s
 LEVELS_02S_CFL = LEVELS_02S[:2] + ((0.0175, "run_glottis_h0175_dt05_z02_c75_02s"),)
 # (t0, t1, levels, what sets them apart)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Does the closing cycle reach a limit cycle, and how fast? (stop 37)
+"""Does the closing cycle reach a limit cycle, and how fast?
 
 At 0.2 s the closing cycle (ζ1 = ζ2 = 0.02, the preset
 demos/glottis/closing_cycle.toml) still drifts: its cycle-mean flow falls
@@ -23,15 +23,15 @@ cycle by cycle, long enough to see where it goes:
 Runs: the reference (h_gap 0.035 mm, Δt 1e-5, quadrature degree 4)
 continued to 0.5 s from its 0.2 s checkpoint (--restart, log
 run_restart_05s.log), the preset demos/glottis/closing_cycle.toml as
-committed in stop 40 (the same mesh and Δt at quadrature degree 2, the
-fold's upper mode at 160 Hz: since stop 44 the preset's is 155 Hz) from
-rest to 0.5 s (stop 40:
+committed (the same mesh and Δt at quadrature degree 2, the
+fold's upper mode at 160 Hz: the preset's is 155 Hz) from
+rest to 0.5 s (
   mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml --vf.f2 160
       --duration 0.5 --stats_from 0.5 --write_every 0
       --checkpoint-every 10000 --output bench/results/run_glottis_preset_q2_05s
 ), the Δt/2 and
 0.025 mm levels to 0.2 s, the 0.0175 mm level to 0.1 s at Δt 0.7e-5 and
-to 0.25 s at Δt 0.5e-5 (stops 40-41), and the
+to 0.25 s at Δt 0.5e-5, and the
 reduced model (--flow bernoulli, the same fold and Δt; it runs 0.8 s in
 seconds, in a temporary folder) at the same damping ζ = 0.02 and at half
 and twice that: its settling time against ζ says whether the approach is
@@ -72,11 +72,11 @@ RUNS = (("h 0.035 mm, dt 1e-5, to 0.5 s", "run_glottis_h035_dt1_z02_c75_05s"),
         # 0.155 s when its checkpoint was lost, short of T_SHORT: this is
         # the 0.1 s run)
         ("h 0.0175 mm, dt 0.7e-5, to 0.1 s", "run_glottis_h0175_dt07_z02_c75"),
-        # stop 40: the finest level at the others' jet CFL, to 0.2 s
-        # (stop 41: continued to 0.25 s from its step-40000 checkpoint,
+        # the finest level at the others' jet CFL, to 0.2 s
+        # (continued to 0.25 s from its step-40000 checkpoint,
         # run_restart_e.log; the first 0.2 s are the 0.2 s run's)
         ("h 0.0175 mm, dt 0.5e-5, to 0.25 s", "run_glottis_h0175_dt05_z02_c75_025s"),
-        # the preset as committed (quadrature degree 2, stop 39), from rest
+        # the preset as committed (quadrature degree 2), from rest
         ("preset (degree 2), to 0.5 s", "run_glottis_preset_q2_05s"))
 # the runs to 0.5 s: their own summaries (t >= 0.25 s) side by side
 LONG_RUNS = ("run_glottis_h035_dt1_z02_c75_05s", "run_glottis_preset_q2_05s")

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Where does the FE glottis scene need its fine mesh? Cost against accuracy.
 
-The converged closing cycle of stop 22 (h_gap = 0.035 mm on all of the
+The converged closing cycle (h_gap = 0.035 mm on all of the
 fold, h_far = 0.35 mm, Δt = 1e−5, ζ1 = ζ2 = 0.02, 1200 Pa:
 bench/results/run_glottis_h035_dt1_z02_c75) takes 21.5 min per 0.1 s on
 2 ranks, 2.1× the scene's 10 min target. Most of its 31.5k flow unknowns
@@ -43,7 +43,7 @@ COMMON = ["--flow", "fe", "--duration", "0.1", "--write_every", "0", "--dt", "1e
 # case: (run folder, options)
 REFERENCE = "h035_dt1_z02_c75"
 CASES = {
-    # stop 22's converged run (bench/glottis_closure_converged.py)
+    # the converged run (bench/glottis_closure_converged.py)
     REFERENCE: ("run_glottis_h035_dt1_z02_c75", ["--fe.h_far", "0.35e-3"]),
     # h_gap within 1.5 mm of the axis, graded over 3 mm, far field 0.5 mm
     "band_fh15_g3_hf05": ("run_glottis_band_fh15_g3_hf05",

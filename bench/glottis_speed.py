@@ -1,17 +1,16 @@
 #!/usr/bin/python3
-"""Wall time of 0.1 s of the FE glottis closing cycle, per solver (issue 7's
-speed point: < 10 min on 2 cores).
+"""Wall time of 0.1 s of the FE glottis closing cycle, per solver (the
+speed target: < 10 min on 2 cores).
 
 The configuration is the preset demos/glottis/closing_cycle.toml (h_gap
 0.035 mm, Δt 1e-5, ζ 0.02, p_sub 1200 Pa), run for 0.1 s with the flow's
-cell integrals at quadrature degree 2 (the preset's since stop 39: the same
-cycle to 0.03 %, README "Quadrature degree 2") and 4 (the solver's default,
-at which the README's mesh/Δt ladder was run). The machines here drift in speed by 15-40 %
+cell integrals at quadrature degree 2 (the preset's: the same
+cycle to 0.03 %, docs/glottis.md) and 4 (the solver's default,
+at which the mesh/Δt ladder of docs/glottis.md was run). The machines here drift in speed by 15-40 %
 between runs, so the two are run in interleaved pairs (4, 2, 4, 2, ...) and
 compared as ratios within a pair; the order alternates from pair to pair
-(4, 2, then 2, 4), as the first run of a pair tends to be the slower
-(stops 31 and 38). The runs of stops 38-40 had the fold's upper mode at
-160 Hz, the preset's value before stop 44 (now 155 Hz: the same mesh, Δt
+(4, 2, then 2, 4), as the first run of a pair tends to be the slower. The runs had the fold's upper mode at
+160 Hz, the preset's value (now 155 Hz: the same mesh, Δt
 and solvers; f0 2 % lower). Each run:
 
   mpirun -n 2 fsai_glottis --config demos/glottis/closing_cycle.toml
@@ -41,7 +40,7 @@ ap.add_argument("--pairs", type=int, default=1)
 ap.add_argument("--keep", help="keep each run's run.log and summary.json in DIR/q<Q>_<pair>")
 ap.add_argument("--logs", nargs="+", help="tabulate these run logs instead of running")
 args = ap.parse_args()
-TARGET = 600.0  # [s] wall for 0.1 s (issue 7)
+TARGET = 600.0  # [s] wall for 0.1 s
 TIMERS = ("glottis: time loop", "fluid: solve", "fluid: assemble", "ale: move", "fluid: force")
 WALL = "wall [s]"  # the log's own, or the command's when this script ran it
 

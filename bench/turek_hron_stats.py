@@ -4,7 +4,7 @@ uy(A), drag and lift over the last WINDOW seconds, mean = (max + min)/2,
 amplitude = (max - min)/2 and frequency from the upward crossings of the
 mean (the benchmark's convention), compared with the FeatFlow refined
 values (Turek et al. 2010; FeatFlow benchmark pages, level 4+0, FSI2
-dt = 0.0005, FSI3 dt = 0.00025; shared/references/turek_hron_results.csv).
+dt = 0.0005, FSI3 dt = 0.00025; references/turek_hron_results.csv).
 bench/fsi_accuracy.py uses the same functions.
 
 usage: bench/turek_hron_stats.py RUN_DIR [--case FSI2|FSI3] [--window 2.0]

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The voice scene (fsai_demo, 2 MPI ranks): speed vs accuracy over three
 resolutions of flow mesh, acoustic mesh and time step, and the comparison
-runs of issue 8 — vowels a and i and the tract replaced by a short
+runs — vowels a and i and the tract replaced by a short
 straight tube (default and coarse resolution), the variants of the
 monopole pair and the acoustic glottis (default resolution), the sound's
 Newmark step without numerical damping (trapezoidal, medium and default
@@ -48,7 +48,7 @@ coarse = ["--fe.h_far", "1e-3", "--fe.h_gap", "0.1e-3", "--voice.h", "0.008", "-
 medium = ["--fe.h_far", "0.7e-3", "--fe.h_gap", "0.07e-3", "--voice.h", "0.006", "--dt", "3e-5"]
 rigid = ["--voice.yielding_walls=false", "--voice.subglottal", "hard"]
 # The sound's Newmark step without numerical damping (γ = ½, the default
-# before stop 25): the high-frequency ringing it keeps
+#): the high-frequency ringing it keeps
 trapezoidal = ["--acoustics.newmark_gamma", "0.5", "--acoustics.newmark_beta", "0.25"]
 runs = {
     "u_coarse": coarse,
@@ -61,7 +61,7 @@ runs = {
     "tube_default": ["--tract", "tube"],
     # The acoustic glottis and the monopole pair (both on by default): each
     # alone, and neither (Lighthill's source and the rest slit: the default
-    # before stop 24)
+    #)
     "u_default_lighthill_only": ["--voice.monopole=false", "--voice.glottal_slit=false"],
     "u_default_slit_only": ["--voice.monopole=false"],
     "u_default_monopole_only": ["--voice.glottal_slit=false"],
@@ -70,7 +70,7 @@ runs = {
     "tube_coarse": coarse + ["--tract", "tube"],
     "notaper_coarse": coarse + ["--voice.taper=false"],
     "pml_coarse": coarse + ["--radiation", "pml"],
-    # Where it fails: the lossless tract of stop 15 (rigid walls, sound-hard
+    # Where it fails: the lossless tract (rigid walls, sound-hard
     # subglottal end) at all three resolutions, and the hard end alone
     "u_coarse_rigid": coarse + rigid,
     "u_medium_rigid": medium + rigid,

@@ -1,4 +1,4 @@
-# Acoustic wave equation with Lighthill's source (shared/DESIGN.md E14, E15,
+# Acoustic wave equation with Lighthill's source (docs/model.md E14, E15,
 # E21), compiled for triangles (2D planar and axisymmetric) and tetrahedra.
 #
 # Strong form, acoustic pressure p' in a fixed domain Ω^a:
@@ -20,7 +20,7 @@
 #   (1/c0²)(p̈ + 2σ ṗ + σ² p) − Δp = 0,
 # whose 1D solution p = exp(−σx/c0) g(t − x/c0) travels without dispersion
 # and decays: a layer exact for normal incidence (not perfectly matched at
-# oblique incidence; the measured reflection is in the README).
+# oblique incidence; the measured reflection is in docs/benchmarks.md).
 #
 # Weak form (E21): M P̈ + C Ṗ + K P = b(t) with
 #   M = ∫ (1/c0²) p q w dx
@@ -81,7 +81,7 @@ b_inlet = rho0 * q * w * ds(1)
 # Glottal slit (dx(1) bound at run time to its cells): the acoustic domain
 # is fixed with the glottis at rest, so in the cells under the fold the
 # momentum balance is that of the flow's actual slit rather than air at
-# rest (shared/DESIGN.md E14 with a local momentum law):
+# rest (docs/model.md E14 with a local momentum law):
 #   ρ' ∂v/∂t + r' v = −∇p',
 # ρ' = ρ0 g0/g (the inertance of a slit g/g0 as wide as the mesh's) and r'
 # = (g0/g) r, r the slit's resistance per unit length (viscous and the

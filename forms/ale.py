@@ -1,5 +1,5 @@
 # ALE mesh motion: the fluid-mesh displacement d as an extension of the
-# interface displacement into Ω^f (shared/DESIGN.md §2 "Coupling", E13),
+# interface displacement into Ω^f (docs/model.md §3, E13),
 # triangles and tetrahedra, P1 (the flow's velocity space, so that the mesh
 # velocity w = BDF(d) lives where the flow needs it).
 #

@@ -1,5 +1,5 @@
 # Incompressible Navier–Stokes in ALE form with P1/P1 stabilisation
-# (shared/DESIGN.md E8–E11, E19, E20), triangles and tetrahedra.
+# (docs/model.md E8–E11, E19, E20), triangles and tetrahedra.
 #
 # Strong form on the moving domain Ω_t, mesh velocity w, body force f:
 #   ρ (∂v/∂t|_A + ((v − w)·∇) v) − μ Δv + ∇p + σ_P χ (v − w) = ρ f,  ∇·v = 0
@@ -92,7 +92,7 @@ bn_minus = conditional(lt(bn, 0), bn, 0)
 nu = mu / rho
 bnorm = sqrt(dot(b, b) + 1e-30)
 # 1/sqrt rather than (…)**−0.5: FFCx emits pow() for the latter, which
-# took a third of the matrix kernel's time (perf, stop 26)
+# took a third of the matrix kernel's time (perf)
 tau_m = 1 / sqrt((2 * inv_dt) ** 2 + (2 * bnorm / h) ** 2 + (4 * nu / h**2) ** 2)
 tau_c = 0.5 * h * bnorm
 

@@ -1,4 +1,4 @@
-# Elastodynamics of the vocal fold and the benchmark solids (shared/DESIGN.md
+# Elastodynamics of the vocal fold and the benchmark solids (docs/model.md
 # E1, E4, E6, E7, E16–E18), compiled for triangles (plane strain) and
 # tetrahedra, P1 and P2.
 #

@@ -1,5 +1,5 @@
 // Copyright (C) 2026 fsai developers
-// ALE mesh motion (shared/DESIGN.md E13, src/ale/MeshMotion): affine
+// ALE mesh motion (docs/model.md E13, src/ale/MeshMotion): affine
 // boundary motion is reproduced exactly, x = X + d has no drift, the mesh
 // velocity is the BDF derivative, and in a squeezing glottal gap the plain
 // harmonic extension inverts cells where the stiffened extension does not.

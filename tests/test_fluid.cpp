@@ -1,5 +1,5 @@
 // Copyright (C) 2026 fsai developers
-// Flow (shared/DESIGN.md E11a): the penalty inlet tends to the Dirichlet
+// Flow (docs/model.md E11a): the penalty inlet tends to the Dirichlet
 // inflow as ε → 0 and to a pressure inlet as ε → ∞ (Poiseuille channel).
 #include "catch.h"
 #include <ale/PrescribedMotion.h>

@@ -1,10 +1,9 @@
 // Copyright (C) 2026 fsai developers
-// Glottis closure scene, reduced parts (shared/DESIGN.md §2 "Glottis
-// closure", 2-DOF VF): profile geometry and mass properties, the 2-DOF
-// fold's in-vacuo frequencies and Newmark energy, the rigid motion, Hertz
-// impact, the quasi-steady Bernoulli load, limit-cycle measures, and the
-// reduced model's self-sustained oscillation with closure; the FE scene's
-// coupling predictor.
+// Glottis closure scene, reduced parts (docs/model.md §5, 2-DOF VF): profile
+// geometry and mass properties, the 2-DOF fold's in-vacuo frequencies and
+// Newmark energy, the rigid motion, Hertz impact, the quasi-steady Bernoulli
+// load, limit-cycle measures, and the reduced model's self-sustained
+// oscillation with closure; the FE scene's coupling predictor.
 #include "catch.h"
 #include <algorithm>
 #include <cmath>
@@ -590,7 +589,7 @@ TEST_CASE("Elastic fold with the Bernoulli flow: self-sustained oscillation "
 {
   // --fold elastic --flow bernoulli with its defaults at p_sub 800 Pa
   // (at 1.2 kPa, the scene's default, the cycles alternate irregularly:
-  // README, bench/glottis_elastic.py)
+  // docs/glottis.md, bench/glottis_elastic.py)
   const auto run = run_elastic_bernoulli(ElasticFoldParameters{}, 800, 7500);
   const double pen = run.max_penetration;
   const auto cs = cycle_stats(run.t, run.gap, run.Q, 0.075); // 0.15 s
@@ -615,7 +614,7 @@ TEST_CASE("Elastic fold with clamped ends at the scene's 1.2 kPa: a regular "
           "[glottis]")
 {
   // The plane-strain fold alternates irregularly at 1.2 kPa (period CV
-  // 44 % over 0.25 s, README): its first mode (47.6 Hz) lacks the
+  // 44 % over 0.25 s, docs/glottis.md): its first mode (47.6 Hz) lacks the
   // anterior-posterior stiffness of a fold clamped at both ends. With
   // --elastic.clamped_ends (66.9 Hz) the cycle is regular
   ElasticFoldParameters ep;

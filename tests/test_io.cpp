@@ -11,7 +11,7 @@
 #include <io/Progress.h>
 #include <io/RunSummary.h>
 #include <io/TimeSeriesWriter.h>
-#include <io/checkpoint.h>
+#include <io/run_state.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
 

@@ -1,5 +1,5 @@
 // Copyright (C) 2026 fsai developers
-// Structure (shared/DESIGN.md E4–E7, E16–E18): cantilever modes against
+// Structure (docs/model.md E4–E7, E16–E18): cantilever modes against
 // Euler–Bernoulli (P2) and the locking of P1, Newmark energy conservation,
 // Rayleigh modal damping, Turek–Hron CSM1 (static St.Venant–Kirchhoff),
 // the clamped section against the 3D vocal fold.

@@ -1,6 +1,6 @@
 // Copyright (C) 2026 fsai developers
 //
-// fsai_modal: natural modes of a 3D vocal fold (shared/DESIGN.md §1): linear
+// fsai_modal: natural modes of a 3D vocal fold (docs/model.md §1): linear
 // elasticity, generalized eigenproblem K x = ω² M x by SLEPc
 // (shift-and-invert about 0), fold fixed on its lateral, anterior and
 // posterior faces; homogeneous or body–cover (two layers). `--dim 2` takes
@@ -58,7 +58,7 @@ struct ModalParameters
     p.add("modes", modes, "number of modes");
     p.add("check-result", check_result,
           "fail unless f1 is in the male phonation range 85-155 Hz "
-          "(shared/DESIGN.md §5)");
+          "(docs/validation.md)");
     p.add("cover.E", cover.E, "Young's modulus of the cover [Pa]");
     p.add("cover.nu", cover.nu, "Poisson's ratio of the cover");
     p.add("cover.rho", cover.rho, "density of the cover [kg/m^3]");

@@ -1,416 +1,34 @@
 // Copyright (C) 2026 fsai developers
 //
 // fsai_turek_hron: the benchmark family of Turek & Hron (2006)
-// (references/turek_hron_setup.csv, turek_hron_results.csv): an elastic
-// St.Venant–Kirchhoff beam behind a rigid cylinder in a channel flow.
-//   CFD1–3  flow only, the beam rigid (stabilised P1/P1, src/fluid): CFD1
-//           and CFD2 steady (Picard), CFD3 periodic (BDF2);
-//   CSM1–3  structure only under gravity g = 2 m/s² (P2 SVK, src/structure):
-//           CSM1 and CSM2 static (Newton with load steps), CSM3 dynamic
-//           (Newmark);
-//   FSI1–3  the strongly coupled partitioned scheme (src/coupling/
-//           PartitionedFsi: ALE mesh motion, flow, solid, Aitken or IQN-ILS).
+// (benchmarks::turek_hron): an elastic St.Venant–Kirchhoff beam behind a
+// rigid cylinder in a channel flow.
+//   CFD1–3  flow only, the beam rigid (CFD1, CFD2 steady; CFD3 periodic);
+//   CSM1–3  structure only under gravity (CSM1, CSM2 static; CSM3 dynamic);
+//   FSI1–3  the strongly coupled partitioned scheme (ALE mesh motion, flow,
+//           solid, Aitken or IQN-ILS).
+// Each case's defaults are its validated setting (docs/validation.md);
+// --quick is a coarse look.
 //
 // Sample runs:
-//   ./fsai_turek_hron --case FSI1 --t_end 6
-//   mpirun -n 2 ./fsai_turek_hron --case FSI1 --coupling.method aitken
+//   ./fsai_turek_hron --case FSI1
+//   mpirun -n 2 ./fsai_turek_hron --case FSI3
 //   ./fsai_turek_hron --case CSM1 --check-result
-//   ./fsai_turek_hron --case CFD3 --dt 0.005 --t_end 8 --window 1
+//   ./fsai_turek_hron --case FSI2 --quick
 //
 // Outputs in --output (default results/fsai_turek_hron): series.csv (t,
-// ux(A), uy(A), drag, lift, coupling iterations — a steady or static case
-// writes one row), coupling.csv (FSI: per step residuals), flow.xdmf or
-// solid.xdmf, summary.json (case, ux_A, uy_A, drag, lift at the end; for
-// each referenced quantity its value — the periodic mean over the last
-// --window seconds for CFD3/CSM3/FSI2/FSI3, with amplitude and frequency —
-// and the % deviation from the reference).
+// ux(A), uy(A), drag, lift, iterations), coupling.csv (FSI), flow.xdmf or
+// solid.xdmf, summary.json (case; ux/uy/drag/lift as _mean, _amp, _freq
+// and their % deviation from the reference; wall_per_sim_s;
+// coupling_iters_mean).
 
-#include <ale/MeshMotion.h>
+#include <benchmarks/turek_hron.h>
 #include <common/Parameters.h>
 #include <common/Runtime.h>
-#include <common/errors.h>
-#include <common/log.h>
-#include <common/periodic.h>
-#include <common/timer.h>
-#include <coupling/PartitionedFsi.h>
-#include <fluid/FluidSolver.h>
-#include <io/CsvWriter.h>
-#include <io/PointProbes.h>
-#include <io/Progress.h>
 #include <io/RunSummary.h>
-#include <io/TimeSeriesWriter.h>
 #include <io/output_dir.h>
-#include <mesh/benchmarks.h>
-#include <structure/ElasticSolver.h>
 
 #include <chrono>
-#include <cmath>
-#include <fstream>
-#include <map>
-#include <sstream>
-
-namespace
-{
-struct BenchmarkParameters
-{
-  std::string output = "results/fsai_turek_hron";
-  std::string bench_case = "FSI1";
-  double h = 0.04;    // far-field mesh size [m]
-  double h_i = 0.004; // mesh size at the cylinder and the beam [m]
-  double dt = 0.05;
-  double t_end = 6.0;
-  double window = 1.0; // periodic statistics over the last `window` s
-  int load_steps = 4;  // CSM1/CSM2
-  int write_every = 10;
-  bool check_result = false;
-
-  void bind(fsai::common::Parameters& p)
-  {
-    p.add("output", output, "output folder");
-    p.add_choice("case", bench_case,
-                 {"CFD1", "CFD2", "CFD3", "CSM1", "CSM2", "CSM3", "FSI1",
-                  "FSI2", "FSI3"},
-                 "benchmark case");
-    p.add("h", h, "far-field mesh size [m]");
-    p.add("h_i", h_i, "mesh size at the cylinder and the beam [m]");
-    p.add("dt", dt, "time step [s]");
-    p.add("t_end", t_end, "simulated time [s]");
-    p.add("window", window,
-          "periodic cases: statistics over the last WINDOW seconds");
-    p.add("load_steps", load_steps, "CSM1/CSM2: load increments");
-    p.add("write_every", write_every, "XDMF output every N steps (0: none)");
-    p.add("check-result", check_result,
-          "fail unless the result is within the acceptance bands of the "
-          "issues (FSI1: uy 2 %, ux 5 %, drag 1 %, lift 3 %; CFD1: drag 1 %, "
-          "lift 3 %; FSI2: uy "
-          "amplitude/frequency, drag mean/amplitude 5 %; CSM1: uy 1 %, ux "
-          "2 %; CSM3: uy mean/amplitude/frequency 3 %)");
-  }
-  void validate() const
-  {
-    fsai::require_positive("--dt", dt);
-    fsai::require_positive("--t_end", t_end);
-    fsai::require_positive("--window", window);
-    fsai::require_positive("--h", h);
-    fsai::require_positive("--h_i", h_i);
-    fsai::require(load_steps >= 1, "--load_steps", ">= 1", load_steps);
-    fsai::require(dt <= t_end, "--dt", "<= --t_end", dt);
-  }
-  bool steady() const
-  {
-    return bench_case == "CFD1" or bench_case == "CFD2" or bench_case == "CSM1"
-           or bench_case == "CSM2";
-  }
-  bool periodic() const
-  {
-    return bench_case == "CFD3" or bench_case == "CSM3" or bench_case == "FSI2"
-           or bench_case == "FSI3";
-  }
-};
-
-/// turek_hron_setup.csv: mean inflow, solid density and modulus, gravity
-struct Setup
-{
-  double ubar, rho_s, E_s, g;
-};
-const std::map<std::string, Setup> setups
-    = {{"CFD1", {0.2, 0, 0, 0}},        {"CFD2", {1.0, 0, 0, 0}},
-       {"CFD3", {2.0, 0, 0, 0}},        {"CSM1", {0, 1000, 1.4e6, 2}},
-       {"CSM2", {0, 1000, 5.6e6, 2}},   {"CSM3", {0, 1000, 1.4e6, 2}},
-       {"FSI1", {0.2, 1000, 1.4e6, 0}}, {"FSI2", {1.0, 10000, 1.4e6, 0}},
-       {"FSI3", {2.0, 1000, 5.6e6, 0}}};
-
-/// One reference row of turek_hron_results.csv (amplitude and frequency
-/// NaN for steady values)
-struct Reference
-{
-  double mean, amplitude, frequency;
-};
-
-/// The references of `bench_case` by series column; FSI2/FSI3 use the
-/// FeatFlow refined set (Turek et al. 2010)
-std::map<std::string, Reference> read_references(const std::string& bench_case)
-{
-  const std::string path
-      = std::string(FSAI_REFERENCES_DIR) + "/turek_hron_results.csv";
-  std::ifstream f(path);
-  if (!f)
-    throw fsai::InputError("cannot read " + path);
-  const std::map<std::string, std::string> column = {{"ux(A)", "ux_A_m"},
-                                                     {"uy(A)", "uy_A_m"},
-                                                     {"drag", "drag_N_per_m"},
-                                                     {"lift", "lift_N_per_m"}};
-  const std::string label
-      = bench_case.rfind("FSI", 0) == 0 and bench_case != "FSI1"
-            ? bench_case + " (FeatFlow refined)"
-            : bench_case;
-  std::map<std::string, Reference> refs;
-  std::string line;
-  std::getline(f, line); // header
-  while (std::getline(f, line))
-  {
-    std::vector<std::string> c;
-    std::stringstream ss(line);
-    for (std::string s; c.size() < 5 and std::getline(ss, s, ',');)
-      c.push_back(s);
-    if (c.size() < 5 or c[0] != label or !column.count(c[1]))
-      continue;
-    auto num
-        = [](const std::string& s) { return s.empty() ? NAN : std::stod(s); };
-    refs[column.at(c[1])] = {num(c[2]), num(c[3]), num(c[4])};
-  }
-  return refs;
-}
-
-/// Series column → summary key
-const std::map<std::string, std::string> short_name
-    = {{"ux_A_m", "ux_A"},
-       {"uy_A_m", "uy_A"},
-       {"drag_N_per_m", "drag"},
-       {"lift_N_per_m", "lift"}};
-
-/// The series of point A and the forces, kept in memory and written row by
-/// row (a stopped run leaves a readable CSV)
-struct Series
-{
-  Series(MPI_Comm comm, const std::string& path)
-      : csv(comm, path,
-            {"t_s", "ux_A_m", "uy_A_m", "drag_N_per_m", "lift_N_per_m",
-             "coupling_iterations"})
-  {
-  }
-  fsai::io::CsvWriter csv;
-  std::vector<double> t, ux, uy, drag, lift;
-  void add(double time, std::array<double, 2> u, std::array<double, 3> F,
-           int iterations)
-  {
-    csv.row({time, u[0], u[1], F[0], F[1], double(iterations)});
-    t.push_back(time);
-    ux.push_back(u[0]);
-    uy.push_back(u[1]);
-    drag.push_back(F[0]);
-    lift.push_back(F[1]);
-  }
-  const std::vector<double>& column(const std::string& name) const
-  {
-    return name == "ux_A_m"         ? ux
-           : name == "uy_A_m"       ? uy
-           : name == "drag_N_per_m" ? drag
-                                    : lift;
-  }
-};
-
-/// Parabolic inflow of mean `ubar`, ramped over the first 2 s
-void set_inflow(fsai::fluid::FluidSolver& flow, double ubar, double t)
-{
-  const double H = 0.41;
-  const double s = t < 2 ? 0.5 * (1 - std::cos(M_PI * t / 2)) : 1.0;
-  flow.inlet_velocity().interpolate(
-      [&](auto& x) -> xt::xarray<double>
-      {
-        xt::xarray<double> v = xt::zeros<double>({std::size_t(2), x.shape(1)});
-        for (std::size_t i = 0; i < x.shape(1); ++i)
-          v(0, i) = s * 1.5 * ubar * x(1, i) * (H - x(1, i)) / (H * H / 4);
-        return v;
-      });
-}
-
-/// Fluid boundaries of the FSI geometry: the beam's surface ("interface")
-/// is a wall that moves with the beam in FSI and is fixed in CFD
-struct ChannelBoundaries
-{
-  fsai::fluid::FluidBoundaries fluid;
-  std::vector<std::int32_t> interface, body; // body: cylinder + beam
-};
-ChannelBoundaries channel_boundaries(const fsai::mesh::MeshData& fm)
-{
-  ChannelBoundaries b;
-  b.interface = fm.facet_tags->find(fm.facet_tag("interface"));
-  auto cyl = fm.facet_tags->find(fm.facet_tag("cylinder"));
-  b.fluid.inlet_dirichlet = fm.facet_tags->find(fm.facet_tag("inlet"));
-  b.fluid.outlet = fm.facet_tags->find(fm.facet_tag("outlet"));
-  b.fluid.walls = fm.facet_tags->find(fm.facet_tag("walls"));
-  for (auto* f : {&cyl, &b.interface})
-    b.fluid.walls.insert(b.fluid.walls.end(), f->begin(), f->end());
-  b.body = cyl;
-  b.body.insert(b.body.end(), b.interface.begin(), b.interface.end());
-  return b;
-}
-
-/// Progress line and the step loop shared by the transient cases;
-/// `step(t)` advances to t and returns the coupling iterations
-template <typename Step>
-void time_loop(const BenchmarkParameters& bp, Step&& step)
-{
-  const int n = int(std::lround(bp.t_end / bp.dt));
-  fsai::io::Progress progress("step", n, 5.0);
-  for (int k = 1; k <= n; ++k)
-    progress.update(k, step(k * bp.dt, k));
-}
-
-/// CFD1–3: flow around the rigid cylinder and beam
-void run_cfd(fsai::common::Runtime& rt, const BenchmarkParameters& bp,
-             const Setup& setup, const fsai::fluid::FluidParameters& fp,
-             Series& series)
-{
-  auto [fm, sm] = fsai::mesh::turek_hron_fsi(rt.comm(), bp.h, bp.h_i);
-  auto b = channel_boundaries(fm);
-  fsai::fluid::FluidSolver flow(fm.mesh, b.fluid, fp, bp.dt);
-  fsai::log::info("Turek-Hron {}: fluid {} dofs", bp.bench_case, flow.dofs());
-  fsai::io::TimeSeriesWriter xdmf(bp.output + "/flow.xdmf",
-                                  {flow.velocity(), flow.pressure()});
-  if (bp.steady())
-  {
-    set_inflow(flow, setup.ubar, 1e9); // fully ramped
-    const int its = flow.solve_steady(100);
-    series.add(0.0, {0, 0}, flow.force(b.body), its);
-    xdmf.write(0.0);
-    return;
-  }
-  time_loop(bp,
-            [&](double t, int k)
-            {
-              set_inflow(flow, setup.ubar, t);
-              flow.step();
-              auto F = flow.force(b.body);
-              series.add(t, {0, 0}, F, 0);
-              if (bp.write_every > 0 and k % bp.write_every == 0)
-                xdmf.write(t);
-              return fmt::format("t = {:.3f} drag = {:.3f} lift = {:.3f}", t,
-                                 F[0], F[1]);
-            });
-}
-
-/// CSM1–3: the beam alone under gravity
-void run_csm(fsai::common::Runtime& rt, const BenchmarkParameters& bp,
-             const Setup& setup, const fsai::structure::SolidParameters& sp,
-             Series& series)
-{
-  auto m = fsai::mesh::turek_hron_beam(rt.comm(), bp.h_i);
-  fsai::structure::ElasticSolver solid(
-      m.mesh, m.facet_tags->find(m.facet_tag("clamped")), {}, sp, bp.dt);
-  solid.set_body_acceleration({0.0, -setup.g, 0.0});
-  fsai::log::info("Turek-Hron {}: solid {} dofs", bp.bench_case,
-                  solid.space()->dofmap()->index_map->size_global()
-                      * solid.space()->dofmap()->index_map_bs());
-  fsai::io::PointProbes A(m.mesh, {{0.6, 0.2, 0.0}});
-  fsai::io::TimeSeriesWriter xdmf(bp.output + "/solid.xdmf",
-                                  {solid.displacement()});
-  auto uA = [&]
-  {
-    auto u = A.values(*solid.displacement());
-    return std::array<double, 2>{u[0], u[1]};
-  };
-  if (bp.steady())
-  {
-    const int its = solid.solve_static(bp.load_steps);
-    series.add(0.0, uA(), {0, 0, 0}, its);
-    xdmf.write(0.0);
-    return;
-  }
-  // CSM3 starts undeformed and at rest with gravity switched on: M a0 = ρ g
-  auto a = solid.acceleration()->x()->mutable_array();
-  const int bs = solid.space()->dofmap()->index_map_bs();
-  for (std::size_t i = 1; i < a.size(); i += bs)
-    a[i] = -setup.g;
-  time_loop(bp,
-            [&](double t, int k)
-            {
-              const int its = solid.step();
-              auto u = uA();
-              series.add(t, u, {0, 0, 0}, its);
-              if (bp.write_every > 0 and k % bp.write_every == 0)
-                xdmf.write(t);
-              return fmt::format("t = {:.3f} ux(A) = {:.4e} uy(A) = {:.4e}", t,
-                                 u[0], u[1]);
-            });
-}
-
-/// FSI1–3: the partitioned coupled problem
-void run_fsi(fsai::common::Runtime& rt, const BenchmarkParameters& bp,
-             const Setup& setup, const fsai::fluid::FluidParameters& fp,
-             const fsai::structure::SolidParameters& sp,
-             const fsai::ale::MeshMotionParameters& ap,
-             const fsai::coupling::CouplingParameters& cp, Series& series,
-             fsai::io::RunSummary& summary)
-{
-  // One gmsh model, fluid and solid parts sharing the interface nodes
-  auto [fm, sm] = fsai::mesh::turek_hron_fsi(rt.comm(), bp.h, bp.h_i);
-  auto b = channel_boundaries(fm);
-  fsai::fluid::FluidSolver flow(fm.mesh, b.fluid, fp, bp.dt);
-  fsai::structure::ElasticSolver solid(
-      sm.mesh, sm.facet_tags->find(sm.facet_tag("clamped")),
-      sm.facet_tags->find(sm.facet_tag("interface")), sp, bp.dt);
-  fsai::ale::MeshMotionBoundaries mb;
-  mb.interface = b.interface;
-  mb.fixed = b.fluid.inlet_dirichlet;
-  for (auto* f : {&b.fluid.outlet, &b.fluid.walls})
-    mb.fixed.insert(mb.fixed.end(), f->begin(), f->end());
-  // (the interface is listed last in MeshMotion: it wins at the two points
-  // where the beam meets the cylinder, where it is 0 anyway)
-  fsai::ale::MeshMotion motion(fm.mesh, flow.velocity_space(), mb, ap);
-  fsai::coupling::InterfaceMap imap(
-      *flow.velocity_space(), b.interface, *solid.space(),
-      sm.facet_tags->find(sm.facet_tag("interface")));
-  fsai::coupling::PartitionedFsi fsi(flow, solid, motion, imap, b.interface, cp,
-                                     bp.output + "/coupling.csv");
-  fsai::log::info("Turek-Hron {}: fluid {} dofs, solid {} dofs, {} "
-                  "interface dofs per side (fluid)",
-                  bp.bench_case, flow.dofs(),
-                  solid.space()->dofmap()->index_map->size_global()
-                      * solid.space()->dofmap()->index_map_bs(),
-                  imap.fluid_dofs().size());
-
-  fsai::io::PointProbes A(sm.mesh, {{0.6, 0.2, 0.0}});
-  fsai::io::TimeSeriesWriter xdmf(
-      bp.output + "/flow.xdmf",
-      {flow.velocity(), flow.pressure(), motion.displacement()});
-  int its_total = 0, its_max = 0, steps = 0;
-  time_loop(bp,
-            [&](double t, int k)
-            {
-              set_inflow(flow, setup.ubar, t);
-              auto rep = fsi.step(t);
-              its_total += rep.iterations;
-              its_max = std::max(its_max, rep.iterations);
-              ++steps;
-              auto u = A.values(*solid.displacement());
-              auto F = flow.force(b.body);
-              series.add(t, {u[0], u[1]}, F, rep.iterations);
-              if (bp.write_every > 0 and k % bp.write_every == 0)
-                xdmf.write(t);
-              return fmt::format("t = {:.3f} uy(A) = {:.4e} drag = {:.3f} "
-                                 "lift = {:.4f} its = {}",
-                                 t, u[1], F[0], F[1], rep.iterations);
-            });
-  summary.set("coupling_iterations_mean", double(its_total) / steps);
-  summary.set("coupling_iterations_max", its_max);
-}
-
-/// Acceptance bands of the issues, % per (column, statistic)
-struct Band
-{
-  std::string column, statistic;
-  double percent;
-};
-const std::map<std::string, std::vector<Band>> bands
-    = {{"FSI1",
-        {{"uy_A_m", "mean", 2},
-         {"ux_A_m", "mean", 5},
-         {"drag_N_per_m", "mean", 1},
-         {"lift_N_per_m", "mean", 3}}},
-       {"FSI2",
-        {{"uy_A_m", "amplitude", 5},
-         {"uy_A_m", "frequency", 5},
-         {"drag_N_per_m", "mean", 5},
-         {"drag_N_per_m", "amplitude", 5}}},
-       {"CFD1", {{"drag_N_per_m", "mean", 1}, {"lift_N_per_m", "mean", 3}}},
-       {"CSM1", {{"uy_A_m", "mean", 1}, {"ux_A_m", "mean", 2}}},
-       {"CSM3",
-        {{"uy_A_m", "mean", 3},
-         {"uy_A_m", "amplitude", 3},
-         {"uy_A_m", "frequency", 3}}}};
-} // namespace
 
 int main(int argc, char* argv[])
 {
@@ -418,125 +36,28 @@ int main(int argc, char* argv[])
       argc, argv,
       [](fsai::common::Runtime& rt)
       {
-        BenchmarkParameters bp;
-        fsai::fluid::FluidParameters fp;
-        fp.rho = 1000.0; // ν = 1e-3 m²/s
-        fp.mu = 1.0;
-        fsai::structure::SolidParameters sp;
-        sp.model = "svk";
-        sp.degree = 2;
-        // E = ρ = 0: the case's values (turek_hron_setup.csv); given values
-        // are kept
-        sp.material = {0.0, 0.4, 0.0};
-        fsai::ale::MeshMotionParameters ap;
-        fsai::coupling::CouplingParameters cp;
-        cp.tol = 1e-6;
-        cp.atol = 1e-10; // [m]: ~1e-7 of the FSI1 tip displacement
+        namespace th = fsai::benchmarks::turek_hron;
+        th::TurekHron s;
         fsai::common::Parameters params(rt.program(),
                                         "Turek-Hron CFD/CSM/FSI benchmark");
-        bp.bind(params);
-        fp.bind(params);
-        sp.bind(params);
-        ap.bind(params);
-        cp.bind(params);
+        s.bind(params);
         params.parse(rt.app_args());
-        const Setup setup = setups.at(bp.bench_case);
-        if (sp.material.rho == 0)
-          sp.material.rho = setup.rho_s > 0 ? setup.rho_s : 1000.0;
-        if (sp.material.E == 0)
-          sp.material.E = setup.E_s > 0 ? setup.E_s : 1.4e6;
-        bp.validate();
-        fp.validate();
-        sp.validate();
-        ap.validate();
-        cp.validate();
-        const auto refs = read_references(bp.bench_case);
+        s.configure(params);
         params.print();
-        fsai::io::prepare_output_dir(rt.comm(), bp.output);
+        fsai::io::prepare_output_dir(rt.comm(), s.bench.output);
         fsai::io::RunSummary summary(rt.comm(), rt.program());
         summary.set_parameters(params.to_json());
-        summary.set("case", bp.bench_case);
+        summary.set("case", s.bench.bench_case);
 
-        Series series(rt.comm(), bp.output + "/series.csv");
+        th::Series series(rt.comm(), s.bench.output + "/series.csv");
         const auto wall0 = std::chrono::steady_clock::now();
-        const std::string family = bp.bench_case.substr(0, 3);
-        if (family == "CFD")
-          run_cfd(rt, bp, setup, fp, series);
-        else if (family == "CSM")
-          run_csm(rt, bp, setup, sp, series);
-        else
-          run_fsi(rt, bp, setup, fp, sp, ap, cp, series, summary);
+        th::run(rt, s, series);
         const double wall = std::chrono::duration<double>(
                                 std::chrono::steady_clock::now() - wall0)
                                 .count();
 
-        // Final values (the keys scripts rely on), then each referenced
-        // quantity against its reference
-        summary.set("ux_A", series.ux.back());
-        summary.set("uy_A", series.uy.back());
-        summary.set("drag", series.drag.back());
-        summary.set("lift", series.lift.back());
-        if (!bp.steady())
-          summary.set("wall_per_sim_s", wall / bp.t_end);
-        std::map<std::string, double> error; // "<column> <statistic>" → %
-        for (const auto& [col, ref] : refs)
-        {
-          const auto& v = series.column(col);
-          fsai::common::PeriodicStats s;
-          if (bp.periodic())
-            s = fsai::common::periodic_stats(series.t, v,
-                                             series.t.back() - bp.window);
-          else
-            s.mean = v.back();
-          const std::string key = short_name.at(col);
-          auto pct = [](double x, double r) { return 100 * (x / r - 1); };
-          error[col + " mean"] = pct(s.mean, ref.mean);
-          std::string line;
-          if (!bp.periodic())
-          {
-            summary.set(key + "_err_percent", error[col + " mean"]);
-            line = fmt::format("{} {} = {:.6g} (ref {:.6g}, {:+.2f}%)",
-                               bp.bench_case, key, s.mean, ref.mean,
-                               error[col + " mean"]);
-          }
-          else
-          {
-            error[col + " amplitude"] = pct(s.amplitude, ref.amplitude);
-            error[col + " frequency"] = pct(s.frequency, ref.frequency);
-            summary.set(key + "_mean", s.mean);
-            summary.set(key + "_amplitude", s.amplitude);
-            summary.set(key + "_frequency_hz", s.frequency);
-            for (std::string stat : {"mean", "amplitude", "frequency"})
-              summary.set(key + "_" + stat + "_err_percent",
-                          error[col + " " + stat]);
-            line = fmt::format(
-                "{} {}: mean {:.6g} (ref {:.6g}, {:+.2f}%), amplitude {:.6g} "
-                "(ref {:.6g}, {:+.2f}%), frequency {:.4g} Hz (ref {:.4g}, "
-                "{:+.2f}%)",
-                bp.bench_case, key, s.mean, ref.mean, error[col + " mean"],
-                s.amplitude, ref.amplitude, error[col + " amplitude"],
-                s.frequency, ref.frequency, error[col + " frequency"]);
-            if (s.crossings < 3)
-              line += fmt::format(" [only {} mean crossings in the last {} s: "
-                                  "extend --t_end or --window]",
-                                  s.crossings, bp.window);
-          }
-          fsai::log::info("{}", line);
-        }
-        fsai::log::info("{}: {:.1f} s wall", bp.bench_case, wall);
-        summary.write(bp.output + "/summary.json");
-
-        if (bp.check_result and bands.count(bp.bench_case))
-        {
-          for (const auto& b : bands.at(bp.bench_case))
-          {
-            const double e = error.at(b.column + " " + b.statistic);
-            if (!(std::abs(e) < b.percent))
-              throw std::runtime_error(fmt::format(
-                  "check failed: {} {} {} off by {:+.2f}% (band {}%)",
-                  bp.bench_case, b.column, b.statistic, e, b.percent));
-          }
-          fsai::log::info("{}: within the acceptance bands", bp.bench_case);
-        }
+        const auto error = th::report(s, series, wall, summary);
+        summary.write(s.bench.output + "/summary.json");
+        th::check(s, error);
       });
 }

@@ -1,7 +1,7 @@
 // Copyright (C) 2026 fsai developers
 //
 // Transfer of the flow velocity to the acoustic mesh for Lighthill's source
-// T_ij = χ ρ0 v_i v_j (shared/DESIGN.md E14, E15; paper §2.4). The acoustic
+// T_ij = χ ρ0 v_i v_j (docs/model.md E14, E15). The acoustic
 // domain contains the flow domain in its reference configuration Ω^f_0, and
 // the source is evaluated there (the flow mesh moves by ALE, the acoustic
 // mesh does not): a node of the acoustic mesh at X takes the flow velocity

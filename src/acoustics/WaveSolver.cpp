@@ -100,6 +100,7 @@ void fsai::acoustics::WaveParameters::validate() const
                 wall_stiffness);
 }
 //-----------------------------------------------------------------------------
+//-----------------------------------------------------------------------------
 fsai::acoustics::WaveSolver::WaveSolver(
     std::shared_ptr<const mesh::Mesh> mesh, int degree, bool axisymmetric,
     const WaveParameters& params, const WaveBoundaries& boundaries, double dt,
@@ -107,15 +108,9 @@ fsai::acoustics::WaveSolver::WaveSolver(
     : _dt(dt), _beta(params.newmark_beta), _gamma(params.newmark_gamma),
       _axisymmetric(axisymmetric), _lighthill(lighthill),
       _wall_m(params.wall_mass), _wall_r(params.wall_resistance),
-      _wall_k(params.wall_stiffness), _M(nullptr, false), _C(nullptr, false),
-      _K(nullptr, false), _A(nullptr, false), _p_vec(nullptr, false),
-      _v(nullptr, false), _a(nullptr, false), _b_inlet(nullptr, false),
-      _rhs(nullptr, false), _work_p(nullptr, false), _work_v(nullptr, false),
-      _wall_b(nullptr, false), _wall_mask(nullptr, false), _wu(nullptr, false),
-      _wv(nullptr, false), _wa(nullptr, false), _wu_pred(nullptr, false),
-      _wv_pred(nullptr, false), _wall_work(nullptr, false), _A0(nullptr, false),
-      _D_k(nullptr, false), _solver(mesh->comm())
+      _wall_k(params.wall_stiffness), _solver(mesh->comm())
 {
+  _rho0 = params.rho0;
   common::ScopedTimer timer("acoustics: setup");
   params.validate();
   fsai::require_positive("acoustics: time step", dt);
@@ -124,15 +119,34 @@ fsai::acoustics::WaveSolver::WaveSolver(
                 "a 2D mesh (x along the axis, y = r >= 0)", tdim);
   fsai::require(degree == 1 or degree == 2, "acoustics: degree", "1 or 2",
                 degree);
-
-  _V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-      acoustic_forms::functionspace_m(tdim, degree), "p",
-      std::const_pointer_cast<mesh::Mesh>(mesh)));
-  auto mesh_nc = std::const_pointer_cast<mesh::Mesh>(mesh);
-  _Vv = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-      acoustic_forms::functionspace_L_source(tdim, degree), "v", mesh_nc));
-  _Vs = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-      acoustic_forms::functionspace_L_source(tdim, degree), "taper", mesh_nc));
+  _degree = degree;
+  create_spaces(std::const_pointer_cast<mesh::Mesh>(mesh));
+  const Forms forms = create_forms(params, boundaries, sigma);
+  common::ScopedTimer t_assemble("acoustics: assemble matrices");
+  assemble_matrices(forms);
+  fix_pressure_release(boundaries.pressure_release);
+  create_state(forms);
+  t_assemble.stop();
+  // The factorisation is computed at the first solve and reused while the
+  // operator does not change (with a slit it changes every step)
+  common::configure_direct_solver(_solver.ksp(), mesh->comm(), tdim);
+  _solver.set_options_prefix("acoustic_");
+  _solver.set_from_options();
+  _solver.set_operator(_A.mat());
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::create_spaces(
+    std::shared_ptr<mesh::Mesh> mesh)
+{
+  const int tdim = mesh->topology().dim();
+  auto space = [&](auto factory, const char* name)
+  {
+    return std::make_shared<fem::FunctionSpace>(
+        fem::create_functionspace(factory, name, mesh));
+  };
+  _V = space(acoustic_forms::functionspace_m(tdim, _degree), "p");
+  _Vv = space(acoustic_forms::functionspace_L_source(tdim, _degree), "v");
+  _Vs = space(acoustic_forms::functionspace_L_source(tdim, _degree), "taper");
   _p = std::make_shared<fem::Function<double>>(_V);
   _p->name = "p_acoustic";
   _v_flow = std::make_shared<fem::Function<double>>(_Vv);
@@ -142,29 +156,40 @@ fsai::acoustics::WaveSolver::WaveSolver(
   _taper->x()->set(1.0);
   _a_wall = std::make_shared<fem::Function<double>>(_Vv);
   _a_wall->name = "wall_acceleration";
-
+  // Lighthill's source scale: 1, except in a slit (SlitLaw)
+  _source_scale = std::make_shared<fem::Function<double>>(space(
+      acoustic_forms::functionspace_L_source(tdim, _degree), "source_scale"));
+  _source_scale->x()->set(1.0);
+}
+//-----------------------------------------------------------------------------
+fsai::acoustics::WaveSolver::Forms fsai::acoustics::WaveSolver::create_forms(
+    const WaveParameters& params, const WaveBoundaries& boundaries,
+    std::shared_ptr<const fem::Function<double>> sigma)
+{
+  auto mesh = std::const_pointer_cast<mesh::Mesh>(_V->mesh());
+  const int tdim = mesh->topology().dim();
   auto constant = [&](double value)
   {
     _constants.push_back(std::make_shared<fem::Constant<double>>(value));
     return _constants.back();
   };
-  Constants constants = {{"c0", constant(params.c0)},
-                         {"rho0", constant(params.rho0)},
-                         {"axisymmetric", constant(axisymmetric ? 1.0 : 0.0)},
-                         {"beta", constant(boundaries.radiation_beta)},
-                         {"one", constant(1.0)}};
+  _constant_map = {{"c0", constant(params.c0)},
+                   {"rho0", constant(params.rho0)},
+                   {"axisymmetric", constant(_axisymmetric ? 1.0 : 0.0)},
+                   {"beta", constant(boundaries.radiation_beta)},
+                   {"one", constant(1.0)}};
   std::shared_ptr<const fem::Function<double>> s = sigma;
   if (!s)
   {
     auto zero = std::make_shared<fem::Function<double>>(
         std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-            acoustic_forms::functionspace_c(tdim, degree), "sigma", mesh_nc)));
+            acoustic_forms::functionspace_c(tdim, _degree), "sigma", mesh)));
     zero->x()->set(0.0);
     s = zero;
   }
 
-  // Boundary roles: each form's ds(1) bound to one set of facets
-  mesh_nc->topology_mutable().create_connectivity(tdim - 1, tdim);
+  // Boundary roles (A2–A4): each form's ds(1) bound to one set of facets
+  mesh->topology_mutable().create_connectivity(tdim - 1, tdim);
   auto tags_rad = role_tags(mesh, boundaries.radiation, "radiation");
   // The damping (1/c0) ṗ acts on radiation and absorbing facets alike, the
   // curvature term β p on the radiation facets only
@@ -191,71 +216,67 @@ fsai::acoustics::WaveSolver::WaveSolver(
     return std::map<IntegralType, const mesh::MeshTags<int>*>{
         {IntegralType::exterior_facet, t.get()}};
   };
-
   auto form = [&](ufcx_form& f,
                   std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces,
                   const Coefficients& coeffs,
                   const std::map<IntegralType, const mesh::MeshTags<int>*>& sd)
   {
     return std::make_shared<fem::Form<double>>(
-        fem::create_form<double>(f, spaces, coeffs, constants, sd, mesh_nc));
+        fem::create_form<double>(f, spaces, coeffs, _constant_map, sd, mesh));
   };
-  auto m = form(acoustic_forms::m(tdim, degree), {_V, _V}, {}, {});
-  auto c = form(acoustic_forms::c(tdim, degree), {_V, _V}, {{"sigma", s}},
-                on(tags_damped));
-  auto k = form(acoustic_forms::k(tdim, degree), {_V, _V}, {{"sigma", s}},
-                on(tags_rad));
-  // Lighthill's source: scale 1 outside a glottal slit (set per step
-  // inside it)
-  _source_scale = std::make_shared<fem::Function<double>>(
-      std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-          acoustic_forms::functionspace_L_source(tdim, degree), "source_scale",
-          mesh_nc)));
-  _source_scale->x()->set(1.0);
+  Forms f;
+  f.m = form(acoustic_forms::m(tdim, _degree), {_V, _V}, {}, {});
+  f.c = form(acoustic_forms::c(tdim, _degree), {_V, _V}, {{"sigma", s}},
+             on(tags_damped));
+  f.k = form(acoustic_forms::k(tdim, _degree), {_V, _V}, {{"sigma", s}},
+             on(tags_rad));
   _L_source = form(
-      acoustic_forms::L_source(tdim, degree), {_V},
+      acoustic_forms::L_source(tdim, _degree), {_V},
       {{"v", _v_flow}, {"taper", _taper}, {"source_scale", _source_scale}}, {});
-  _L_wall = form(acoustic_forms::L_wall(tdim, degree), {_V},
+  _L_wall = form(acoustic_forms::L_wall(tdim, _degree), {_V},
                  {{"a_wall", _a_wall}}, on(tags_wall));
-  auto b_in
-      = form(acoustic_forms::b_inlet(tdim, degree), {_V}, {}, on(tags_in));
-  auto measure = form(acoustic_forms::boundary_measure(tdim, degree), {}, {},
-                      on(tags_in));
-  auto b_yield
-      = form(acoustic_forms::b_inlet(tdim, degree), {_V}, {}, on(tags_yield));
-
-  // E21 matrices, assembled once
-  common::ScopedTimer t_assemble("acoustics: assemble matrices");
-  _M = assemble(*m);
-  _C = assemble(*c);
-  _K = assemble(*k);
-
-  // Effective matrix of the acceleration form of Newmark's method
+  f.b_inlet
+      = form(acoustic_forms::b_inlet(tdim, _degree), {_V}, {}, on(tags_in));
+  f.inlet_measure = form(acoustic_forms::boundary_measure(tdim, _degree), {},
+                         {}, on(tags_in));
+  f.b_yield
+      = form(acoustic_forms::b_inlet(tdim, _degree), {_V}, {}, on(tags_yield));
+  return f;
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::assemble_matrices(const Forms& f)
+{
+  // E21 matrices, assembled once, and the effective matrix of the
+  // acceleration form of Newmark's method, A = M + γΔt C + βΔt² K
+  _M = assemble(*f.m);
+  _C = assemble(*f.c);
+  _K = assemble(*f.k);
   Mat A;
   MatDuplicate(_M.mat(), MAT_COPY_VALUES, &A);
-  MatAXPY(A, _gamma * dt, _C.mat(), DIFFERENT_NONZERO_PATTERN);
-  MatAXPY(A, _beta * dt * dt, _K.mat(), DIFFERENT_NONZERO_PATTERN);
+  MatAXPY(A, _gamma * _dt, _C.mat(), DIFFERENT_NONZERO_PATTERN);
+  MatAXPY(A, _beta * _dt * _dt, _K.mat(), DIFFERENT_NONZERO_PATTERN);
   _A = la::petsc::Matrix(A, false);
-
-  // Pressure release: p'' = 0 on those rows, hence p' stays 0
-  // (collective: every rank calls it, with or without facets)
-  {
-    std::vector<std::int32_t> dofs = fem::locate_dofs_topological(
-        *_V, tdim - 1, boundaries.pressure_release);
-    auto map = _V->dofmap()->index_map;
-    for (std::int32_t d : dofs)
-      if (d < map->size_local())
-        _bc_rows.push_back(d);
-  }
-  {
-    auto map = _V->dofmap()->index_map;
-    std::vector<std::int64_t> global(_bc_rows.size());
-    map->local_to_global(_bc_rows, global);
-    _bc_rows_global.assign(global.begin(), global.end());
-    MatZeroRowsColumns(_A.mat(), PetscInt(_bc_rows_global.size()),
-                       _bc_rows_global.data(), 1.0, nullptr, nullptr);
-  }
-
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::fix_pressure_release(
+    const std::vector<std::int32_t>& facets)
+{
+  // p'' = 0 on those rows, hence p' stays 0 (collective: every rank calls
+  // it, with or without facets)
+  const int tdim = _V->mesh()->topology().dim();
+  auto map = _V->dofmap()->index_map;
+  for (std::int32_t d : fem::locate_dofs_topological(*_V, tdim - 1, facets))
+    if (d < map->size_local())
+      _bc_rows.push_back(d);
+  std::vector<std::int64_t> global(_bc_rows.size());
+  map->local_to_global(_bc_rows, global);
+  _bc_rows_global.assign(global.begin(), global.end());
+  MatZeroRowsColumns(_A.mat(), PetscInt(_bc_rows_global.size()),
+                     _bc_rows_global.data(), 1.0, nullptr, nullptr);
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::create_state(const Forms& f)
+{
   // State vectors: p wraps the Function's array; v, a plain PETSc vectors
   _p_vec = la::petsc::Vector(la::petsc::create_vector_wrap(*_p->x()), false);
   auto like = [&]()
@@ -265,34 +286,24 @@ fsai::acoustics::WaveSolver::WaveSolver(
     VecSet(x, 0.0);
     return la::petsc::Vector(x, false);
   };
-  _v = like();
-  _a = like();
-  _rhs = like();
-  _work_p = like();
-  _work_v = like();
-  _b_inlet = like();
+  for (auto* v :
+       {&_v, &_a, &_rhs, &_work_p, &_work_v, &_b_inlet, &_wall_b, &_wall_mask,
+        &_wu, &_wv, &_wa, &_wu_pred, &_wv_pred, &_wall_work})
+    *v = like();
   _b_assembly = std::make_unique<la::Vector<double>>(
       _V->dofmap()->index_map, _V->dofmap()->index_map_bs());
 
   // Fixed source vector of the volume-velocity inlet
-  assemble_into(*b_in, _b_inlet.vec());
-  // Yielding walls (E21 with ∂p/∂n = −ρ0 ü on them): the lumped boundary
-  // mass B = ρ0 ∫ φ_i w ds. The wall's Newmark step, solved node by node,
-  // makes ü_{n+1} = (p_{n+1} − r ṽ − k ũ)/m_eff, m_eff = m + γΔt r + βΔt² k,
-  // and p_{n+1} = p~ + βΔt² p̈_{n+1}: A gains the diagonal B βΔt²/m_eff, the
+  assemble_into(*f.b_inlet, _b_inlet.vec());
+  // Yielding walls (A3, ∂p/∂n = −ρ0 ü on them): the lumped boundary mass
+  // B = ρ0 ∫ φ_i w ds. The wall's Newmark step, solved node by node, makes
+  // ü_{n+1} = (p_{n+1} − r ṽ − k ũ)/m_eff, m_eff = m + γΔt r + βΔt² k, and
+  // p_{n+1} = p~ + βΔt² p̈_{n+1}: A gains the diagonal B βΔt²/m_eff, the
   // right-hand side −B (p~ − r ṽ − k ũ)/m_eff (step)
-  _wall_b = like();
-  _wall_mask = like();
-  _wu = like();
-  _wv = like();
-  _wa = like();
-  _wu_pred = like();
-  _wv_pred = like();
-  _wall_work = like();
-  _wall_m_eff = _wall_m + _gamma * dt * _wall_r + _beta * dt * dt * _wall_k;
+  _wall_m_eff = _wall_m + _gamma * _dt * _wall_r + _beta * _dt * _dt * _wall_k;
   if (_yielding)
   {
-    assemble_into(*b_yield, _wall_b.vec());
+    assemble_into(*f.b_yield, _wall_b.vec());
     PetscInt n;
     VecGetLocalSize(_wall_b.vec(), &n);
     const PetscScalar* b;
@@ -304,100 +315,25 @@ fsai::acoustics::WaveSolver::WaveSolver(
     VecRestoreArray(_wall_mask.vec(), &mask);
     VecRestoreArrayRead(_wall_b.vec(), &b);
     VecCopy(_wall_b.vec(), _work_p.vec());
-    VecScale(_work_p.vec(), _beta * dt * dt / _wall_m_eff);
+    VecScale(_work_p.vec(), _beta * _dt * _dt / _wall_m_eff);
     MatDiagonalSet(_A.mat(), _work_p.vec(), ADD_VALUES);
   }
-  double local = fem::assemble_scalar(*measure);
-  MPI_Allreduce(&local, &_inlet_measure, 1, MPI_DOUBLE, MPI_SUM, mesh->comm());
-  t_assemble.stop();
-
-  // Glottal slit (forms/acoustics.py): A0 = the matrix above, D_k the
-  // stiffness change from κ = 1 over the slit cells, added every step
-  _section = on_any_rank(boundaries.section_cells);
-  _rho0 = params.rho0;
-  if (_section)
-  {
-    fsai::require(degree == 1, "acoustics: a slit (section cells)",
-                  "P1 pressure", degree);
-    std::vector<std::int32_t> cells = boundaries.section_cells;
-    std::sort(cells.begin(), cells.end());
-    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-    const std::int32_t nc = mesh->topology().index_map(tdim)->size_local();
-    for (auto c : cells)
-    {
-      fsai::require(c >= 0 and c < nc, "acoustics: slit cell",
-                    "an owned cell of this rank", c);
-    }
-    // Per cell: P1 dofs and ∇φ_i = J⁻ᵀ ∇̂φ_i (triangles, x-y plane)
-    fsai::require(tdim == 2, "acoustics: a slit (section cells)", "a 2D mesh",
-                  tdim);
-    const auto X = _V->tabulate_dof_coordinates(false);
-    for (auto c : cells)
-    {
-      const auto d = _V->dofmap()->cell_dofs(c);
-      std::array<std::int32_t, 3> dofs{d[0], d[1], d[2]};
-      const double j00 = X[3 * d[1]] - X[3 * d[0]],
-                   j01 = X[3 * d[2]] - X[3 * d[0]],
-                   j10 = X[3 * d[1] + 1] - X[3 * d[0] + 1],
-                   j11 = X[3 * d[2] + 1] - X[3 * d[0] + 1];
-      const double det = j00 * j11 - j01 * j10;
-      // rows of J⁻¹: (j11, −j01)/det and (−j10, j00)/det; ∇φ1 = first
-      // row of J⁻¹ (as a column), ∇φ2 = second, ∇φ0 = −∇φ1 − ∇φ2
-      const double g1x = j11 / det, g1y = -j01 / det, g2x = -j10 / det,
-                   g2y = j00 / det;
-      _slit_dofs.push_back(dofs);
-      _slit_grad.push_back({-g1x - g2x, -g1y - g2y, g1x, g1y, g2x, g2y});
-    }
-    _slit_cells = cells;
-    _slit_source = boundaries.section_source;
-    _kappa = std::make_shared<fem::Function<double>>(
-        std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-            acoustic_forms::functionspace_k_section(tdim, degree), "kappa",
-            mesh_nc)));
-    _kappa->x()->set(1.0);
-    _slit_inertia.assign(cells.size(), 1.0);
-    _slit_resistance.assign(cells.size(), 0.0);
-    _slit_v.assign(cells.size(), {0.0, 0.0});
-    std::vector<std::int32_t> ones(cells.size(), 1);
-    auto tags = std::make_shared<mesh::MeshTags<std::int32_t>>(
-        mesh, tdim, std::move(cells), std::move(ones));
-    _tags.push_back(tags);
-    _slit_flux = std::make_shared<fem::Function<double>>(
-        std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-            acoustic_forms::functionspace_L_section(tdim, degree), "slit_flux",
-            mesh_nc)));
-    // DG0 dofs are not numbered as the cells: the block of each slit cell
-    // in the scalar and in the vector space (κ and the source scale: the
-    // same element on the same mesh, hence the same numbering)
-    for (auto c : _slit_cells)
-    {
-      const auto d = _kappa->function_space()->dofmap()->cell_dofs(c)[0];
-      if (_source_scale->function_space()->dofmap()->cell_dofs(c)[0] != d)
-        throw std::runtime_error("acoustics: DG0 spaces numbered differently");
-      _slit_dof.push_back(
-          {d, _slit_flux->function_space()->dofmap()->cell_dofs(c)[0]});
-    }
-    const std::map<IntegralType, const mesh::MeshTags<int>*> sd{
-        {IntegralType::cell, tags.get()}};
-    _k_section = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-        acoustic_forms::k_section(tdim, degree), {_V, _V}, {{"kappa", _kappa}},
-        constants, sd, mesh_nc));
-    _L_section = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-        acoustic_forms::L_section(tdim, degree), {_V},
-        {{"slit_flux", _slit_flux}}, constants, sd, mesh_nc));
-    _D_k = assemble(*_k_section);
-    Mat A0;
-    MatDuplicate(_A.mat(), MAT_COPY_VALUES, &A0);
-    _A0 = la::petsc::Matrix(A0, false);
-  }
-
-  // Linear solver: the factorisation is computed at the first solve and
-  // reused while the operator does not change (with a varying section it
-  // changes every step: 1.7k unknowns in fsai_demo, refactorised each time)
-  common::configure_direct_solver(_solver.ksp(), mesh->comm(), tdim);
-  _solver.set_options_prefix("acoustic_");
-  _solver.set_from_options();
-  _solver.set_operator(_A.mat());
+  double local = fem::assemble_scalar(*f.inlet_measure);
+  MPI_Allreduce(&local, &_inlet_measure, 1, MPI_DOUBLE, MPI_SUM,
+                _V->mesh()->comm());
+}
+//-----------------------------------------------------------------------------
+void fsai::acoustics::WaveSolver::set_slit(std::shared_ptr<SlitLaw> slit)
+{
+  // A0: the effective matrix without the slit; the slit adds βΔt² D_k(κ)
+  // every step
+  SlitContext ctx{_V,    _degree, _source_scale,  _constant_map,
+                  _rho0, _dt,     _bc_rows_global};
+  slit->attach(ctx);
+  Mat A0;
+  MatDuplicate(_A.mat(), MAT_COPY_VALUES, &A0);
+  _A0 = la::petsc::Matrix(A0, false);
+  _slit = std::move(slit);
 }
 //-----------------------------------------------------------------------------
 fem::Function<double>& fsai::acoustics::WaveSolver::flow_velocity()
@@ -406,92 +342,6 @@ fem::Function<double>& fsai::acoustics::WaveSolver::flow_velocity()
 }
 //-----------------------------------------------------------------------------
 fem::Function<double>& fsai::acoustics::WaveSolver::taper() { return *_taper; }
-//-----------------------------------------------------------------------------
-void fsai::acoustics::WaveSolver::set_slit_law(
-    std::span<const double> inertia, std::span<const double> resistance)
-{
-  if (!_section)
-    throw std::runtime_error("acoustics: no slit (section cells) was given");
-  if (inertia.size() != _slit_cells.size()
-      or resistance.size() != _slit_cells.size())
-  {
-    throw std::runtime_error(
-        "acoustics: slit law for " + std::to_string(inertia.size()) + " cells, "
-        + std::to_string(_slit_cells.size()) + " expected");
-  }
-  for (std::size_t i = 0; i < inertia.size(); ++i)
-  {
-    if (!(inertia[i] > 0) or !(resistance[i] >= 0) or !std::isfinite(inertia[i])
-        or !std::isfinite(resistance[i]))
-    {
-      throw std::runtime_error(
-          "acoustics: slit law needs a finite inertia > 0 and resistance >= 0 "
-          "(got "
-          + std::to_string(inertia[i]) + ", " + std::to_string(resistance[i])
-          + ")");
-    }
-  }
-  std::copy(inertia.begin(), inertia.end(), _slit_inertia.begin());
-  std::copy(resistance.begin(), resistance.end(), _slit_resistance.begin());
-}
-//-----------------------------------------------------------------------------
-void fsai::acoustics::WaveSolver::update_section()
-{
-  common::ScopedTimer t("acoustics: slit update");
-  // κ = 1 / (ρ'/ρ0 + r'Δt/ρ0) and the load κ r' v_n, cell by cell
-  {
-    auto kappa = _kappa->x()->mutable_array();
-    auto source = _source_scale->x()->mutable_array();
-    auto flux = _slit_flux->x()->mutable_array();
-    for (std::size_t i = 0; i < _slit_cells.size(); ++i)
-    {
-      const double r = _slit_resistance[i];
-      const double k = 1.0 / (_slit_inertia[i] + r * _dt / _rho0);
-      const auto [dk, dv] = _slit_dof[i];
-      kappa[dk] = k;
-      source[dk] = _slit_source ? k : 0.0;
-      flux[2 * dv] = k * r * _slit_v[i][0];
-      flux[2 * dv + 1] = k * r * _slit_v[i][1];
-    }
-  }
-  MatZeroEntries(_D_k.mat());
-  fem::assemble_matrix(la::petsc::Matrix::set_block_fn(_D_k.mat(), ADD_VALUES),
-                       *_k_section, {});
-  MatAssemblyBegin(_D_k.mat(), MAT_FINAL_ASSEMBLY);
-  MatAssemblyEnd(_D_k.mat(), MAT_FINAL_ASSEMBLY);
-  // Pressure-release rows keep p̈ = 0: no change on them
-  MatZeroRowsColumns(_D_k.mat(), PetscInt(_bc_rows_global.size()),
-                     _bc_rows_global.data(), 0.0, nullptr, nullptr);
-  MatCopy(_A0.mat(), _A.mat(), SAME_NONZERO_PATTERN);
-  MatAXPY(_A.mat(), _beta * _dt * _dt, _D_k.mat(), SUBSET_NONZERO_PATTERN);
-  _solver.set_operator(_A.mat());
-}
-//-----------------------------------------------------------------------------
-void fsai::acoustics::WaveSolver::update_slit_velocity()
-{
-  const auto p = _p->x()->array();
-  for (std::size_t i = 0; i < _slit_cells.size(); ++i)
-  {
-    const auto& d = _slit_dofs[i];
-    const auto& g = _slit_grad[i];
-    const double m = _slit_inertia[i] * _rho0 / _dt;
-    for (int k = 0; k < 2; ++k)
-    {
-      const double grad_p
-          = g[k] * p[d[0]] + g[2 + k] * p[d[1]] + g[4 + k] * p[d[2]];
-      _slit_v[i][k] = (m * _slit_v[i][k] - grad_p) / (m + _slit_resistance[i]);
-    }
-  }
-}
-//-----------------------------------------------------------------------------
-std::vector<std::int64_t> fsai::acoustics::WaveSolver::slit_keys() const
-{
-  const auto all = io::cell_keys(*_V->mesh());
-  std::vector<std::int64_t> keys;
-  for (auto c : _slit_cells)
-    keys.push_back(all[c]);
-  return keys;
-}
 //-----------------------------------------------------------------------------
 fem::Function<double>& fsai::acoustics::WaveSolver::wall_acceleration()
 {
@@ -602,7 +452,7 @@ void fsai::acoustics::WaveSolver::assemble_source(Vec b)
   for (std::size_t i = 0; i < _b_volume.size(); ++i)
     if (_volume_dQdt[i] != 0.0)
       VecAXPY(b, _rho0 * _volume_dQdt[i], _b_volume[i].vec());
-  if (_lighthill or _vibrating or _section)
+  if (_lighthill or _vibrating or _slit)
   {
     _b_assembly->set(0.0);
     auto arr = _b_assembly->mutable_array();
@@ -610,8 +460,8 @@ void fsai::acoustics::WaveSolver::assemble_source(Vec b)
       fem::assemble_vector(arr, *_L_source);
     if (_vibrating)
       fem::assemble_vector(arr, *_L_wall);
-    if (_section)
-      fem::assemble_vector(arr, *_L_section);
+    if (_slit)
+      _slit->add_load(arr);
     _b_assembly->scatter_rev(std::plus<double>());
     la::petsc::Vector w(la::petsc::create_vector_wrap(*_b_assembly), false);
     VecAXPY(b, 1.0, w.vec());
@@ -686,8 +536,11 @@ void fsai::acoustics::WaveSolver::step()
   VecWAXPY(_work_v.vec(), (1.0 - _gamma) * dt, _a.vec(), _v.vec());
 
   // The slit's κ and load at the new time (before the right-hand side)
-  if (_section)
-    update_section();
+  if (_slit)
+  {
+    _slit->update_operator(_A0.mat(), _A.mat(), _beta);
+    _solver.set_operator(_A.mat());
+  }
 
   // Right-hand side b(t + Δt) − C v~ − K p~, zero on pressure-release rows
   {
@@ -699,10 +552,10 @@ void fsai::acoustics::WaveSolver::step()
   VecAXPY(_rhs.vec(), -1.0, tmp);
   MatMult(_K.mat(), _work_p.vec(), tmp);
   VecAXPY(_rhs.vec(), -1.0, tmp);
-  if (_section)
+  if (_slit)
   {
     // κ of the new time: K(κ) p~ = (K + D_k) p~, A = A0 + βΔt² D_k
-    MatMult(_D_k.mat(), _work_p.vec(), tmp);
+    MatMult(_slit->stiffness_change(), _work_p.vec(), tmp);
     VecAXPY(_rhs.vec(), -1.0, tmp);
   }
   if (_yielding)
@@ -742,8 +595,8 @@ void fsai::acoustics::WaveSolver::step()
   VecWAXPY(_p_vec.vec(), _beta * dt * dt, _a.vec(), _work_p.vec());
   VecWAXPY(_v.vec(), _gamma * dt, _a.vec(), _work_v.vec());
   _p->x()->scatter_fwd();
-  if (_section)
-    update_slit_velocity();
+  if (_slit)
+    _slit->update_velocity(_p->x()->array());
   if (_yielding)
   {
     // ü = (p − r ṽ − k ũ)/m_eff on the wall nodes, then the correctors
@@ -837,16 +690,8 @@ void fsai::acoustics::WaveSolver::save(io::RankState& state,
     put("wall_v", _wv);
     put("wall_a", _wa);
   }
-  if (_section)
-  {
-    // The slit's velocity by cell (input index)
-    const auto keys_c = slit_keys();
-    std::vector<double> v;
-    for (const auto& vi : _slit_v)
-      v.insert(v.end(), vi.begin(), vi.end());
-    io::put_blocks(state, prefix + "slit_v", v, 2, keys_c,
-                   std::int32_t(keys_c.size()));
-  }
+  if (_slit)
+    _slit->save(state, prefix);
   state[prefix + "t"] = {_t};
 }
 //-----------------------------------------------------------------------------
@@ -874,13 +719,7 @@ void fsai::acoustics::WaveSolver::load(const std::vector<io::RankState>& ranks,
     get("wall_v", _wv);
     get("wall_a", _wa);
   }
-  if (_section)
-  {
-    const auto keys_c = slit_keys();
-    std::vector<double> v(2 * keys_c.size());
-    io::get_blocks(ranks, prefix + "slit_v", v, 2, keys_c);
-    for (std::size_t i = 0; i < _slit_cells.size(); ++i)
-      _slit_v[i] = {v[2 * i], v[2 * i + 1]};
-  }
+  if (_slit)
+    _slit->load(ranks, prefix);
   _t = io::state_entry(ranks.at(0), prefix + "t", 1)[0];
 }

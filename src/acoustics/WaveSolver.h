@@ -1,6 +1,6 @@
 // Copyright (C) 2026 fsai developers
 //
-// Acoustic wave equation with Lighthill's source, shared/DESIGN.md E14, E15,
+// Acoustic wave equation with Lighthill's source, docs/model.md E14, E15,
 // E21; forms in forms/acoustics.py:
 //   M P̈ + C Ṗ + K P = b(t)
 // integrated by Newmark's method (β = 1/4, γ = 1/2: average acceleration,
@@ -11,13 +11,15 @@
 // with MUMPS).
 #pragma once
 
+#include "SlitLaw.h"
 #include <array>
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
 #include <functional>
-#include <io/checkpoint.h>
+#include <io/run_state.h>
+#include <map>
 #include <memory>
 #include <span>
 #include <utility>
@@ -71,15 +73,6 @@ struct WaveBoundaries
   /// m ü + r u̇ + k u = p' (WaveParameters::wall_*): the wall losses that
   /// give the tract's resonances their bandwidths
   std::vector<std::int32_t> yielding;
-  /// Cells (owned, local indices; P1 only) of a slit whose momentum law is
-  /// ρ' ∂v/∂t + r' v = −∇p' (slit_inertia(), slit_resistance(); the
-  /// glottis of a fixed acoustic domain, forms/acoustics.py): their
-  /// stiffness is scaled every step and the effective matrix rebuilt
-  std::vector<std::int32_t> section_cells;
-  /// Lighthill's force in the slit cells: in their momentum law, scaled by
-  /// κ like ∇p' (true), or left out (false: the source starts where the
-  /// slit ends)
-  bool section_source = true;
 };
 
 /// Newmark solver for E21 on a fixed mesh. Usage per step: set the source
@@ -132,19 +125,9 @@ public:
   dolfinx::fem::Function<double>& taper();
   /// Wall acceleration a (P1 vector) on the vibrating boundary
   dolfinx::fem::Function<double>& wall_acceleration();
-  /// The slit's cells (WaveBoundaries::section_cells, sorted, no repeats)
-  const std::vector<std::int32_t>& slit_cells() const { return _slit_cells; }
-  /// The slit law from the next step() on, one value per slit_cells()
-  /// entry: inertia ρ'/ρ0 > 0 and resistance r' ≥ 0 [kg/(m³ s)] (defaults
-  /// 1 and 0: the plain wave equation; set_initial_state() uses these
-  /// defaults, the slit starting at rest)
-  void set_slit_law(std::span<const double> inertia,
-                    std::span<const double> resistance);
-  /// Acoustic velocity v' [m/s] in each slit cell after the last step
-  const std::vector<std::array<double, 2>>& slit_velocity() const
-  {
-    return _slit_v;
-  }
+  /// A slit whose momentum law the caller sets (SlitLaw, docs/model.md
+  /// A5), applied from the next step on; before set_initial_state()
+  void set_slit(std::shared_ptr<SlitLaw> slit);
 
   /// Advance by one time step (t → t + Δt)
   void step();
@@ -200,41 +183,47 @@ private:
   std::shared_ptr<Form> _L_source, _L_wall;
   std::vector<std::int32_t> _bc_rows;    // owned Dirichlet rows (local)
   std::vector<PetscInt> _bc_rows_global; // the same, global
-  dolfinx::la::petsc::Matrix _M, _C, _K, _A;
-  dolfinx::la::petsc::Vector _p_vec; // wraps _p->x()
-  dolfinx::la::petsc::Vector _v, _a, _b_inlet, _rhs, _work_p, _work_v;
+  dolfinx::la::petsc::Matrix _M{nullptr, false}, _C{nullptr, false},
+      _K{nullptr, false}, _A{nullptr, false};
+  dolfinx::la::petsc::Vector _p_vec{nullptr, false}; // wraps _p->x()
+  dolfinx::la::petsc::Vector _v{nullptr, false}, _a{nullptr, false},
+      _b_inlet{nullptr, false}, _rhs{nullptr, false}, _work_p{nullptr, false},
+      _work_v{nullptr, false};
   // Yielding walls: lumped boundary mass ρ0 ∫ φ_i w ds, its 0/1 mask and
   // the wall's nodal state (displacement, velocity, acceleration) with
   // its Newmark predictors
-  dolfinx::la::petsc::Vector _wall_b, _wall_mask, _wu, _wv, _wa, _wu_pred,
-      _wv_pred, _wall_work;
+  dolfinx::la::petsc::Vector _wall_b{nullptr, false},
+      _wall_mask{nullptr, false}, _wu{nullptr, false}, _wv{nullptr, false},
+      _wa{nullptr, false}, _wu_pred{nullptr, false}, _wv_pred{nullptr, false},
+      _wall_work{nullptr, false};
   std::unique_ptr<dolfinx::la::Vector<double>> _b_assembly;
-  // Glottal slit: the law's inertia and resistance, the stiffness scale κ
-  // and the load κ r' v_n they give, the velocity v' (all DG0); the form
-  // of the stiffness change from κ = 1 and its matrix D_k, the effective
-  // matrix without it (A0), the slit's load form; per slit cell its P1
-  // dofs and the gradient of their basis functions
-  bool _section = false;
+  // A slit (set_slit): its operator, the effective matrix without it (A0)
+  // and Lighthill's source scale, which it sets in its cells
+  std::shared_ptr<SlitLaw> _slit;
+  dolfinx::la::petsc::Matrix _A0{nullptr, false};
+  std::shared_ptr<dolfinx::fem::Function<double>> _source_scale;
   double _rho0 = 1.2;
-  std::shared_ptr<dolfinx::fem::Function<double>> _kappa, _slit_flux,
-      _source_scale;
-  bool _slit_source = true;
-  std::shared_ptr<Form> _k_section, _L_section;
-  dolfinx::la::petsc::Matrix _A0, _D_k;
-  std::vector<std::int32_t> _slit_cells;
-  std::vector<double> _slit_inertia, _slit_resistance;
-  std::vector<std::array<double, 2>> _slit_v;
-  /// DG0 blocks of each slit cell (scalar space, vector space)
-  std::vector<std::pair<std::int32_t, std::int32_t>> _slit_dof;
-  std::vector<std::array<std::int32_t, 3>> _slit_dofs; // its P1 dofs
-  std::vector<std::array<double, 6>> _slit_grad; // ∂φ_i/∂x, ∂φ_i/∂y
-  /// κ and κ r' v_n for the step; A = A0 + βΔt² D_k(κ), D_k(κ) for the
-  /// step's right-hand side
-  void update_section();
-  /// v_{n+1} = (ρ'/Δt v_n − ∇p_{n+1}) / (ρ'/Δt + r') in each slit cell
-  void update_slit_velocity();
-  /// Partition-independent keys of the slit cells (checkpoints)
-  std::vector<std::int64_t> slit_keys() const;
+  int _degree = 1;
+  std::map<std::string, std::shared_ptr<const dolfinx::fem::Constant<double>>>
+      _constant_map;
+
+  // Set-up steps of the constructor
+  struct Forms
+  {
+    std::shared_ptr<Form> m, c, k, b_inlet, b_yield, inlet_measure;
+  };
+  /// Spaces of p', the flow velocity, the taper and the source scale
+  void create_spaces(std::shared_ptr<dolfinx::mesh::Mesh> mesh);
+  /// The forms of E21 with each boundary role bound to its facets (A2–A4)
+  Forms
+  create_forms(const WaveParameters& params, const WaveBoundaries& boundaries,
+               std::shared_ptr<const dolfinx::fem::Function<double>> sigma);
+  /// M, C, K and the effective matrix A
+  void assemble_matrices(const Forms& f);
+  /// p' = 0 rows of A (pressure release)
+  void fix_pressure_release(const std::vector<std::int32_t>& facets);
+  /// State vectors, the inlet's source vector, the yielding walls' mass
+  void create_state(const Forms& f);
   dolfinx::la::petsc::KrylovSolver _solver;
 };
 

@@ -1,6 +1,6 @@
 // Copyright (C) 2026 fsai developers
 //
-// Transfer-function method (shared/DESIGN.md §2 "Acoustics"): a broadband
+// Transfer-function method (docs/model.md §4): a broadband
 // volume-velocity pulse U(t) enters at the glottis end of a vocal-tract
 // mesh; the pressure is recorded at probe points (glottis, lips,
 // microphone); H(f) = P(f)/U(f).

@@ -1,6 +1,6 @@
 // Copyright (C) 2026 fsai developers
 //
-// ALE mesh motion driven by the interface (shared/DESIGN.md §2 "Coupling",
+// ALE mesh motion driven by the interface (docs/model.md §3,
 // E13): the fluid-mesh displacement d is the harmonic or pseudo-elastic
 // extension of the interface displacement (forms/ale.py), solved on the
 // reference mesh with cell-size stiffening, and the mesh is moved to
@@ -17,7 +17,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
-#include <io/checkpoint.h>
+#include <io/run_state.h>
 #include <memory>
 #include <span>
 #include <stdexcept>

@@ -6,8 +6,7 @@
 // keeps the discrete scheme free of geometric-conservation errors:
 //   w^{n+1} = (3 x^{n+1} − 4 x^n + x^{n−1}) / (2Δt)   (BDF1 at the start)
 // Used by the ALE verification tests and by fsai_cylinder --ale_amplitude;
-// the interface-driven mesh motion of the FSI scenes is the ale module of
-// issue 6.
+// the interface-driven mesh motion of the FSI scenes is ale::MeshMotion.
 #pragma once
 
 #include <array>

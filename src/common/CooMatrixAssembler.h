@@ -18,7 +18,7 @@ namespace fsai::common
 /// Why: DOLFINx inserts each cell's element matrix with
 /// MatSetValuesBlockedLocal, which maps the indices and searches every row
 /// for its columns; on the FE glottis scene (31.5k unknowns, 2 ranks) that
-/// insertion took 21.5 of the 38 ms of a matrix assembly (stop 30). Here
+/// insertion took 21.5 of the 38 ms of a matrix assembly. Here
 /// the entries' positions are fixed once and each assembly only writes the
 /// values in order and hands them to PETSc in one call. The lifting
 /// (b −= A_{:,D} g, DOLFINx's apply_lifting, which packs the form's

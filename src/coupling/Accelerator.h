@@ -1,10 +1,9 @@
 // Copyright (C) 2026 fsai developers
 //
-// Acceleration of the partitioned FSI fixed point (shared/DESIGN.md §2
-// "Coupling", loop O–V): each coupling iteration maps the interface
-// variable x_k (displacement or load) to H(x_k) = x̃_k by one structure +
-// ALE + flow pass, with residual r_k = x̃_k − x_k. An accelerator turns
-// (x_k, x̃_k) into the next iterate x_{k+1}:
+// Acceleration of the partitioned FSI fixed point (docs/model.md §3, loop O–V):
+// each coupling iteration maps the interface variable x_k (displacement or
+// load) to H(x_k) = x̃_k by one structure + ALE + flow pass, with residual r_k =
+// x̃_k − x_k. An accelerator turns (x_k, x̃_k) into the next iterate x_{k+1}:
 //   constant  x_{k+1} = x_k + ω r_k (ω = 1 with one pass: explicit coupling)
 //   aitken    the same with ω_k = −ω_{k−1} r_{k−1}·(r_k − r_{k−1}) /
 //             |r_k − r_{k−1}|² (Irons–Tuck / Küttler & Wall 2008), ω_0 from
@@ -20,7 +19,7 @@
 #pragma once
 
 #include <deque>
-#include <io/checkpoint.h>
+#include <io/run_state.h>
 #include <memory>
 #include <mpi.h>
 #include <span>

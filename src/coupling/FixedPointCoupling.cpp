@@ -67,7 +67,7 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
   // The iterate with the smallest residual: where a discontinuous map
   // (the glottis's porous region switching cell-wise near closure) makes
   // the accelerator wander off, an unconverged step keeps that one rather
-  // than the last (one 2-rank closing-cycle run, stop 38: residual
+  // than the last (one 2-rank closing-cycle run: residual
   // 2.8e-5 at the first evaluation, 3.1e-4 after 50, and a flow spike of
   // +28 % at a 12 µm gap from the last iterate's state)
   std::vector<double> x_best;

@@ -1,7 +1,7 @@
 // Copyright (C) 2026 fsai developers
 //
 // The coupling iteration of one time step of the partitioned FSI loop
-// (shared/DESIGN.md §2 "Coupling", §4; paper §3.3, loop O–V): the caller's
+// (docs/model.md §3, §4, loop O–V): the caller's
 // map H (structure step with the interface load, ALE move, flow step,
 // consistent interface traction E12 → the new interface variable) is
 // iterated with an Accelerator until the relative interface residual

@@ -1,10 +1,9 @@
 // Copyright (C) 2026 fsai developers
 //
-// One time step of the strongly coupled partitioned FSI scheme (paper
-// §3.3, loop O–V; shared/DESIGN.md §2 "Coupling", E12, E13). The
-// interface variable x is the interface displacement at the fluid's
-// interface vertices (owned entries, distributed); one evaluation of the
-// fixed-point map H(x) is
+// One time step of the strongly coupled partitioned FSI scheme (docs/model.md
+// §3, loop O–V; docs/model.md §3, E12, E13). The interface variable x is the
+// interface displacement at the fluid's interface vertices (owned entries,
+// distributed); one evaluation of the fixed-point map H(x) is
 //   1. ALE: the fluid mesh follows x (MeshMotion), mesh velocity w (BDF);
 //   2. flow: the interface is a wall moving with w; one BDF step from the
 //      step's saved state;

@@ -89,8 +89,22 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   common::ScopedTimer timer("fluid: setup");
   p.validate();
   fsai::require_positive("fluid: time step", dt);
-  const int tdim = mesh->topology().dim();
+  fsai::require(bnd.inlet_penalty.empty() or p.inlet_eps > 0,
+                "--fluid.inlet_eps", "> 0 for a penalty inlet", p.inlet_eps);
   auto mesh_nc = std::const_pointer_cast<mesh::Mesh>(mesh);
+  create_spaces(mesh_nc);
+  create_forms(mesh_nc, bnd);
+  create_dirichlet_conditions(bnd);
+  create_matrix();
+  configure_solver();
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::create_spaces(std::shared_ptr<mesh::Mesh> mesh)
+{
+  // The mixed P1/P1 space, its collapsed velocity and pressure spaces, the
+  // porous indicator's DG0 space, and every field of E8–E20
+  const int tdim = mesh->topology().dim();
+  auto mesh_nc = mesh;
   _W = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
       fluid_forms::functionspace_a(tdim, 1), "v_0", mesh_nc));
   {
@@ -121,7 +135,18 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   _v_wall = fn(_V, "wall_velocity");
   _chi = fn(_DG0, "porous");
   _f = fn(_V, "body_force");
-
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
+                                            const FluidBoundaries& bnd)
+{
+  // forms/fluid.py's system, right-hand side and residual (E12) with the
+  // parameters as constants; ds(1) the penalty inlet (E11a), ds(2) the
+  // outlet (E11c)
+  const auto& p = _par;
+  const int tdim = mesh->topology().dim();
+  const double dt = _dt;
+  auto mesh_nc = mesh;
   auto constant = [&](double v)
   {
     _constants.push_back(std::make_shared<fem::Constant<double>>(v));
@@ -132,8 +157,6 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   _a2 = constant(0.0);
   _inv_dt = constant(p.tau_dt ? 1.0 / dt : 0.0);
   _p_in = constant(p.p_in);
-  fsai::require(bnd.inlet_penalty.empty() or p.inlet_eps > 0,
-                "--fluid.inlet_eps", "> 0 for a penalty inlet", p.inlet_eps);
   std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
       = {{"rho", constant(p.rho)},
          {"mu", constant(p.mu)},
@@ -172,6 +195,23 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
   std::map<fem::IntegralType, const mesh::MeshTags<int>*> sd
       = {{fem::IntegralType::exterior_facet, _tags[0].get()}};
 
+  // The system and the residual (forces) with the same quadrature
+  const bool q2 = p.quadrature_degree == 2;
+  _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      q2 ? fluid_forms::a_q2(tdim, 1) : fluid_forms::a(tdim, 1), {_W, _W},
+      coeffs, c, sd));
+  _L = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      q2 ? fluid_forms::L_q2(tdim, 1) : fluid_forms::L(tdim, 1), {_W}, coeffs,
+      c, sd));
+  _F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      q2 ? fluid_forms::F_res_q2(tdim, 1) : fluid_forms::F_res(tdim, 1), {_W},
+      coeffs, c, sd));
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::create_dirichlet_conditions(
+    const FluidBoundaries& bnd)
+{
+  const int fdim = _W->mesh()->topology().dim() - 1;
   // Dirichlet: walls (v = wall velocity), Dirichlet inlet, symmetry v_y = 0
   auto W0 = _W->sub({0});
   auto vec_bc = [&](const std::vector<std::int32_t>& facets,
@@ -189,22 +229,20 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
     _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
         std::make_shared<fem::Constant<double>>(0.0), std::move(dofs), W01));
   }
-
-  // The system and the residual (forces) with the same quadrature
-  const bool q2 = p.quadrature_degree == 2;
-  _a = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      q2 ? fluid_forms::a_q2(tdim, 1) : fluid_forms::a(tdim, 1), {_W, _W},
-      coeffs, c, sd));
-  _L = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      q2 ? fluid_forms::L_q2(tdim, 1) : fluid_forms::L(tdim, 1), {_W}, coeffs,
-      c, sd));
-  _F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      q2 ? fluid_forms::F_res_q2(tdim, 1) : fluid_forms::F_res(tdim, 1), {_W},
-      coeffs, c, sd));
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::create_matrix()
+{
   _A = la::petsc::Matrix(fem::petsc::create_matrix(*_a), false);
-  if (p.assembly == "coo")
+  if (_par.assembly == "coo")
     _coo = std::make_unique<common::CooMatrixAssembler>(_A.mat(), *_a, _bcs);
-
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::configure_solver()
+{
+  const auto& p = _par;
+  auto mesh = _W->mesh();
+  const int tdim = mesh->topology().dim();
   // Defaults set on this KSP, then the options database (prefix fluid_)
   // overrides them: global option defaults would leak from one solver
   // instance to the next
@@ -216,7 +254,7 @@ fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
     common::configure_direct_solver(ksp, mesh->comm(), tdim, true);
     // MUMPS's default (ICNTL(8) = 77) recomputes an iterative row/column
     // scaling at every numeric factorisation: 22 % of the factorisation of
-    // the FE glottis flow (stop 26), which refactorises every step. Its
+    // the FE glottis flow, which refactorises every step. Its
     // threshold pivoting does without: the glottis series agreed to 1e−12.
     // The options database (-fluid_mat_mumps_icntl_8) still decides.
     common::set_option_default("fluid_mat_mumps_icntl_8", "0");

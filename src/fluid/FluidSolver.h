@@ -1,7 +1,7 @@
 // Copyright (C) 2026 fsai developers
 //
 // Incompressible Navier–Stokes, stabilised P1/P1, BDF1/BDF2 on a (possibly
-// moving) mesh: shared/DESIGN.md E8–E11, E19, E20; forms/fluid.py. Each
+// moving) mesh: docs/model.md E8–E11, E19, E20; forms/fluid.py. Each
 // solve is linear (Oseen: the convecting velocity is extrapolated, or
 // Picard: iterated). PETSc options prefix "fluid_" (default: MUMPS LU).
 // The matrix is reassembled at every solve (mesh, convecting velocity and
@@ -17,7 +17,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
-#include <io/checkpoint.h>
+#include <io/run_state.h>
 #include <map>
 #include <memory>
 #include <span>
@@ -74,7 +74,7 @@ struct FluidParameters
   /// at setup: the element matrices are written in order and handed over
   /// in one call) or "dolfinx" (MatSetValuesLocal per cell). The same
   /// matrix to rounding; with "coo" the flow's assembly (matrix and
-  /// vector) took 0.63 of its time on the FE glottis scene (stop 30)
+  /// vector) took 0.63 of its time on the FE glottis scene
   std::string assembly = "coo";
   /// Quadrature degree of the cell integrals (forms/fluid.py): 4 or 2. Both
   /// integrate the Galerkin terms exactly on P1; 2 samples the τ-weighted
@@ -193,6 +193,13 @@ public:
 
 private:
   int solve(); // assemble and solve once with the current b; updates _up
+  // Set-up steps of the constructor
+  void create_spaces(std::shared_ptr<dolfinx::mesh::Mesh> mesh);
+  void create_forms(std::shared_ptr<dolfinx::mesh::Mesh> mesh,
+                    const FluidBoundaries& bnd);
+  void create_dirichlet_conditions(const FluidBoundaries& bnd);
+  void create_matrix();    // the system's sparsity (and the COO assembler)
+  void configure_solver(); // MUMPS, or the Schur fieldsplit
   void configure_blocks(); // fieldsplit block solvers, at the first solve
   bool _configure_blocks = false;
   mutable int _solves_since_setup = 0; // solves with this preconditioner

@@ -2,7 +2,7 @@
 //
 // Reduced glottal flow for the closure scene: quasi-steady 1D Bernoulli
 // flow with flow separation (Pelorson et al. 1994; Horáček & Švec 2002),
-// the cheap end of the FE-vs-reduced comparison of shared/DESIGN.md §2.
+// the cheap end of the FE-vs-reduced comparison of docs/model.md.
 // Along the moved fold surface with half-gap y(x):
 //   - p_sub is the total (lung) pressure, the subglottal velocity is
 //     neglected against the glottal one;

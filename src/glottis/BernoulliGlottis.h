@@ -7,6 +7,7 @@
 // time: the cheap end of the scene's speed/accuracy chart.
 #pragma once
 #include "BernoulliFlow.h"
+#include "GlottisModel.h"
 #include "HertzContact.h"
 #include "Sample.h"
 #include "TwoDofFold.h"
@@ -47,16 +48,21 @@ StabilityResult linear_stability(const FoldProfile& profile,
                                  const TwoDofParameters& vf,
                                  const BernoulliGlottisParameters& p);
 
-class BernoulliGlottis
+class BernoulliGlottis : public GlottisModel
 {
 public:
   BernoulliGlottis(const FoldProfile& profile, const TwoDofParameters& vf,
                    const ContactParameters& contact,
                    const BernoulliGlottisParameters& p);
   /// Advance one step; throws std::runtime_error if the fixed point fails
-  Sample step();
+  Sample step() override;
   const TwoDofFold& fold() const { return _fold; }
-  double time() const { return _t; }
+  double time() const override { return _t; }
+  void checkpoint(nlohmann::json& scalars,
+                  std::optional<io::RankState>& fields) override;
+  void restore(const nlohmann::json& checkpoint,
+               const std::vector<io::RankState>& fields) override;
+  void describe(io::RunSummary& summary) override;
 
   /// Everything the next step depends on: time, the fold's accepted state
   /// and the load that predicts the next step

@@ -20,13 +20,14 @@
 #pragma once
 #include "BernoulliGlottis.h"
 #include "ElasticFold.h"
+#include "GlottisModel.h"
 #include "Sample.h"
 #include <coupling/FixedPointCoupling.h>
 #include <memory>
 
 namespace fsai::glottis
 {
-class ElasticBernoulliGlottis
+class ElasticBernoulliGlottis : public GlottisModel
 {
 public:
   ElasticBernoulliGlottis(MPI_Comm comm, const FoldProfile& profile,
@@ -37,7 +38,7 @@ public:
                           const std::string& coupling_csv,
                           std::size_t coupling_rows_kept = std::string::npos);
   /// One coupled time step
-  Sample step();
+  Sample step() override;
   /// The accepted state (fold, time) for a checkpoint (this rank's part);
   /// load() continues from the parts of all the checkpoint's ranks
   /// (coupling_rows_kept = the checkpoint's step keeps coupling.csv's
@@ -47,7 +48,13 @@ public:
   /// restart continue identically.
   io::RankState save();
   void load(const std::vector<io::RankState>& ranks);
-  double time() const { return _t; }
+  double time() const override { return _t; }
+  void checkpoint(nlohmann::json& scalars,
+                  std::optional<io::RankState>& fields) override;
+  void restore(const nlohmann::json& checkpoint,
+               const std::vector<io::RankState>& fields) override;
+  std::vector<io::TimeSeriesWriter::Field> fold_fields() override;
+  void describe(io::RunSummary& summary) override;
   ElasticFold& fold() { return _fold; }
 
 private:

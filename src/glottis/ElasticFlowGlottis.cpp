@@ -221,10 +221,12 @@ void fsai::glottis::ElasticFlowGlottis::load(
       });
 }
 //-----------------------------------------------------------------------------
-void fsai::glottis::ElasticFlowGlottis::write_last_good(const std::string& path)
+std::optional<double>
+fsai::glottis::ElasticFlowGlottis::write_last_good(const std::string& path)
 {
   _channel.rewind();
   _fold.restore_state();
   io::TimeSeriesWriter xdmf(path, _channel.fields());
   xdmf.write(_t);
+  return _t;
 }

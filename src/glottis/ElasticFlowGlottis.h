@@ -1,9 +1,9 @@
 // Copyright (C) 2026 fsai developers
 //
 // The glottis scene with the elastic fold (ElasticFold) in the FE flow
-// (FlowChannel): `fsai_glottis --flow fe --fold elastic` (issue 7). The
-// closure model of the 2-DOF scene (shared/DESIGN.md §2 "Glottis
-// closure") with a deforming surface instead of a rigid one:
+// (FlowChannel): `fsai_glottis --flow fe --fold elastic`. The
+// closure model of the 2-DOF scene (docs/model.md §5) with a deforming surface
+// instead of a rigid one:
 //   - the fluid boundary is the fold surface, lifted as a whole (tapered
 //     to the wall) by boundary_lift(g, g_min) when the fold's half-gap g
 //     comes below 2 g_min, so the fluid mesh never collapses;
@@ -40,6 +40,7 @@
 #include "ElasticFold.h"
 #include "FlowChannel.h"
 #include "FlowGlottis.h"
+#include "GlottisModel.h"
 #include "Sample.h"
 #include <coupling/FixedPointCoupling.h>
 #include <map>
@@ -47,7 +48,7 @@
 
 namespace fsai::glottis
 {
-class ElasticFlowGlottis
+class ElasticFlowGlottis : public GlottisModel
 {
 public:
   ElasticFlowGlottis(MPI_Comm comm, const FoldProfile& profile,
@@ -59,7 +60,7 @@ public:
                      const std::string& coupling_csv,
                      std::size_t coupling_rows_kept = std::string::npos);
   /// One coupled time step
-  Sample step();
+  Sample step() override;
   /// The accepted state (flow, mesh motion, fold, the surface pressures of
   /// the load predictor, time) for a checkpoint (this rank's part); load()
   /// continues from the parts of all the checkpoint's ranks
@@ -68,7 +69,14 @@ public:
   /// steps is forgotten at a checkpoint, not saved.
   io::RankState save();
   void load(const std::vector<io::RankState>& ranks);
-  double time() const { return _t; }
+  double time() const override { return _t; }
+  void checkpoint(nlohmann::json& scalars,
+                  std::optional<io::RankState>& fields) override;
+  void restore(const nlohmann::json& checkpoint,
+               const std::vector<io::RankState>& fields) override;
+  std::vector<io::TimeSeriesWriter::Field> flow_fields() const override;
+  std::vector<io::TimeSeriesWriter::Field> fold_fields() override;
+  void describe(io::RunSummary& summary) override;
   ElasticFold& fold() { return _fold; }
   /// Pressure at the fold's ordered surface points (the fold's load, traction
   /// −p n) of the last evaluation [Pa]
@@ -78,7 +86,7 @@ public:
   /// After a failed step: flow and mesh back at the last accepted step,
   /// whose fields (flow, porous indicator, mesh displacement) are written to
   /// the XDMF file `path`
-  void write_last_good(const std::string& path);
+  std::optional<double> write_last_good(const std::string& path) override;
 
 private:
   /// Fluid boundary, mesh, mesh velocity and Ω^P_t for the moved fold

@@ -1,7 +1,7 @@
 // Copyright (C) 2026 fsai developers
 //
-// The elastic vocal fold of the glottis scene (issue 7, `--fold elastic`;
-// shared/DESIGN.md "Structure"): the region between the fold profile's
+// The elastic vocal fold of the glottis scene (`--fold elastic`;
+// docs/model.md §1): the region between the fold profile's
 // surface and its lateral attachment y = H (mesh::glottis_channel_and_fold,
 // the same nodes on the fold curve as the flow mesh) as a plane-strain
 // linear elastic body (E = 8 kPa, ν = 0.4 by default; ElasticSolver, Newmark,

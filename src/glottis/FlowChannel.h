@@ -1,12 +1,11 @@
 // Copyright (C) 2026 fsai developers
 //
-// The flow side of the FE glottis scene (shared/DESIGN.md §2 "Glottis
-// closure"), whatever moves the fold: the half-channel mesh
-// (mesh::glottis_channel), the stabilised ALE Navier–Stokes flow
-// (FluidSolver: E11a total-pressure inlet, directional do-nothing outlet,
-// symmetry axis, fold and wall as moving / fixed walls), the mesh motion
-// (MeshMotion) that follows a displacement of the fold surface, and the
-// porous region Ω^P_t (cells whose current midpoint lies inside the moved
+// The flow side of the FE glottis scene (docs/model.md §5), whatever moves the
+// fold: the half-channel mesh (mesh::glottis_channel), the stabilised ALE
+// Navier–Stokes flow (FluidSolver: E11a total-pressure inlet, directional
+// do-nothing outlet, symmetry axis, fold and wall as moving / fixed walls), the
+// mesh motion (MeshMotion) that follows a displacement of the fold surface, and
+// the porous region Ω^P_t (cells whose current midpoint lies inside the moved
 // fold). FlowGlottis drives it with the rigid 2-DOF fold,
 // ElasticFlowGlottis with the elastic fold.
 //

@@ -366,10 +366,12 @@ void fsai::glottis::FlowGlottis::load(const std::vector<io::RankState>& ranks)
       });
 }
 //-----------------------------------------------------------------------------
-void fsai::glottis::FlowGlottis::write_last_good(const std::string& path)
+std::optional<double>
+fsai::glottis::FlowGlottis::write_last_good(const std::string& path)
 {
   _channel.rewind();
   _fold.set_state(_fold.state());
   io::TimeSeriesWriter xdmf(path, _channel.fields());
   xdmf.write(_t);
+  return _t;
 }

@@ -1,11 +1,11 @@
 // Copyright (C) 2026 fsai developers
 //
-// The glottis scene with the FE flow (shared/DESIGN.md §2 "Glottis
-// closure", paper §2.5): stabilised P1/P1 ALE Navier–Stokes (FluidSolver) in
-// the symmetric half-channel (mesh::glottis_channel), driven by the
-// subglottal pressure through the E11a inlet (ε large: total pressure
-// p_sub), directional do-nothing outlet, symmetry axis y = 0; the 2-DOF
-// fold (TwoDofFold) moves the fold boundary; Hertz impact (HertzContact).
+// The glottis scene with the FE flow (docs/model.md §5): stabilised P1/P1 ALE
+// Navier–Stokes (FluidSolver) in the symmetric half-channel
+// (mesh::glottis_channel), driven by the subglottal pressure through the E11a
+// inlet (ε large: total pressure p_sub), directional do-nothing outlet,
+// symmetry axis y = 0; the 2-DOF fold (TwoDofFold) moves the fold boundary;
+// Hertz impact (HertzContact).
 //
 // Closure model: the fluid boundary follows the fold but never comes closer
 // to the axis than g_min (below 2 g_min its height is compressed smoothly
@@ -25,6 +25,7 @@
 #pragma once
 #include "FlowChannel.h"
 #include "FoldProfile.h"
+#include "GlottisModel.h"
 #include "HertzContact.h"
 #include "Sample.h"
 #include "TwoDofFold.h"
@@ -106,7 +107,7 @@ struct FlowGlottisSetup
   void validate(double p_sub, double dt);
 };
 
-class FlowGlottis
+class FlowGlottis : public GlottisModel
 {
 public:
   FlowGlottis(MPI_Comm comm, const FoldProfile& profile,
@@ -117,7 +118,7 @@ public:
               const std::string& coupling_csv,
               std::size_t coupling_rows_kept = std::string::npos);
   /// One coupled time step
-  Sample step();
+  Sample step() override;
   /// The accepted state after the last step (flow, mesh motion, fold,
   /// coupling history) for a checkpoint (this rank's part); load()
   /// continues from the parts of all the checkpoint's ranks (the scene
@@ -128,14 +129,20 @@ public:
   /// After a failed step: flow, mesh and fold back at the last accepted
   /// step, whose fields (velocity, pressure, porous indicator, mesh
   /// displacement) are written to the XDMF file `path` for inspection
-  void write_last_good(const std::string& path);
+  std::optional<double> write_last_good(const std::string& path) override;
   /// Move the fluid boundary and mesh to the fold state q = (h, φ) at time
   /// t, nothing else (no flow solve, no step accepted): for replaying a
   /// fold trajectory through the mesh motion. Throws MeshInvertedError like
   /// a step's move
   ale::MeshQuality move_mesh(double t, const std::array<double, 2>& q);
   /// Time of the last accepted step
-  double time() const { return _t; }
+  double time() const override { return _t; }
+  void checkpoint(nlohmann::json& scalars,
+                  std::optional<io::RankState>& fields) override;
+  void restore(const nlohmann::json& checkpoint,
+               const std::vector<io::RankState>& fields) override;
+  std::vector<io::TimeSeriesWriter::Field> flow_fields() const override;
+  void describe(io::RunSummary& summary) override;
   const TwoDofFold& fold() const { return _fold; }
   /// The flow side: mesh, flow, mesh motion, output fields
   const FlowChannel& channel() const { return _channel; }

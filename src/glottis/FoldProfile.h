@@ -1,7 +1,7 @@
 // Copyright (C) 2026 fsai developers
 //
 // The coronal profile of one vocal fold in the 2D symmetric glottis scene
-// (shared/DESIGN.md §2 "Glottis closure"), and its rigid motion.
+// (docs/model.md §5), and its rigid motion.
 //
 // Coordinates: x along the flow (inferior → superior), y across the
 // channel; the symmetry axis y = 0 is the contact plane, the channel wall
@@ -24,7 +24,7 @@
 //
 // The 2-DOF fold moves this profile rigidly: translation h (positive
 // towards the axis) and rotation φ (counter-clockwise) about the elastic
-// axis X_EA, DESIGN "Structure (2-DOF VF)":
+// axis X_EA (docs/model.md G1):
 //   u(X) = (0, −h) + (R(φ) − I)(X − X_EA).
 // The profile within `taper` of the wall is the attachment band (the fold's
 // body, fixed to the thyroid cartilage); the part below it is the vibrating

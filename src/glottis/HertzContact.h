@@ -1,10 +1,9 @@
 // Copyright (C) 2026 fsai developers
 //
-// Impact of the fold on the symmetry axis (shared/DESIGN.md §2 "Glottis
-// closure"; Horáček, Šidlof & Švec 2005): when an edge circle of the
-// medial surface (radius r = --glottis.medial_radius; inferior or superior
-// edge, whichever crosses, both when the fold closes flat) crosses y = 0 by
-// δ > 0,
+// Impact of the fold on the symmetry axis (docs/model.md §5; Horáček, Šidlof &
+// Švec 2005): when an edge circle of the medial surface (radius r =
+// --glottis.medial_radius; inferior or superior edge, whichever crosses, both
+// when the fold closes flat) crosses y = 0 by δ > 0,
 //   F_H = k_H δ^{3/2} (1 + b_H δ̇),   k_H = (4/3) E/(1 − μ_H²) √r,
 // pushing the fold back (+y) at the circle's lowest point.
 // 2D / depth scaling: the symmetric model stands for two equal folds that

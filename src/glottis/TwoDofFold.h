@@ -1,9 +1,8 @@
 // Copyright (C) 2026 fsai developers
 //
-// The 2-DOF vocal fold of the closure scene (shared/DESIGN.md §2
-// "Structure", 2-DOF VF; Horáček & Švec 2002): the rigid profile of
-// FoldProfile on a translational spring (h) and a torsional spring (φ)
-// about the elastic axis X_EA,
+// The 2-DOF vocal fold of the closure scene (docs/model.md G1; Horáček & Švec
+// 2002): the rigid profile of FoldProfile on a translational spring (h) and a
+// torsional spring (φ) about the elastic axis X_EA,
 //   m ḧ + S φ̈ + d_h ḣ + k_h h = Q_h,   S ḧ + I φ̈ + d_φ φ̇ + k_φ φ = Q_φ,
 // Q the generalised aerodynamic (and contact) forces. With the
 // displacement u = (0, −h) + (R(φ) − I)(X − X_EA) of FoldProfile, Q_h = −L

@@ -22,7 +22,7 @@ fsai::glottis::CycleStats fsai::glottis::cycle_stats(
   // With hysteresis: a crossing counts only once the gap has been below
   // mid − A/4 since the last one. The open phase of the fold with f2 =
   // 155 Hz dips to 0.192 mm, 6 µm below its mid value, and without it
-  // every cycle counted twice (f0 304.7 Hz for 151.8 Hz, stop 43)
+  // every cycle counted twice (f0 304.7 Hz for 151.8 Hz)
   const double arm = mid - 0.25 * s.gap_amplitude;
   bool armed = false;
   for (std::size_t i = i0 + 1; i < t.size(); ++i)

@@ -14,7 +14,7 @@
 // window has settled: the drift of the per-cycle peak flow and period, the
 // mean of the later half of the cycles less that of the earlier half,
 // over the mean of all (0 on a limit cycle; a start-up transient that is
-// still dying out, or a slow drift, makes it nonzero — stop 35: the FE
+// still dying out, or a slow drift, makes it nonzero — the FE
 // closing cycle drifts by −2 % over [0.05, 0.1] s and −1 % over
 // [0.1, 0.2] s).
 #pragma once

@@ -8,7 +8,7 @@
 // field files removed last: a kill at any moment leaves one complete
 // checkpoint.
 #pragma once
-#include "checkpoint.h"
+#include "run_state.h"
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <string>

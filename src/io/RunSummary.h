@@ -8,7 +8,7 @@
 
 namespace fsai::io
 {
-/// The run's summary.json (shared/DESIGN.md §6): program, parameters in
+/// The run's summary.json (docs/model.md §6): program, parameters in
 /// effect, MPI size, `wall_s`, fsai timings and the scene's key results
 /// under fixed names. Written by rank 0 atomically (temporary file +
 /// rename), so readers never see a half-written file; write() may be called

@@ -2,8 +2,8 @@
 #include "TimeSeriesWriter.h"
 #include "../common/errors.h"
 #include "../common/timer.h"
-#include "checkpoint.h"
 #include "output_dir.h"
+#include "run_state.h"
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/io/XDMFFile.h>

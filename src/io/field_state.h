@@ -8,7 +8,7 @@
 // twice, so rank-local arrays cannot be read back as they are; the number
 // of ranks may also differ between a run and its restart.
 #pragma once
-#include "checkpoint.h"
+#include "run_state.h"
 #include <cstdint>
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/mesh/Mesh.h>

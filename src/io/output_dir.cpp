@@ -1,6 +1,8 @@
 // Copyright (C) 2026 fsai developers
 #include "output_dir.h"
 #include "../common/errors.h"
+#include "../common/log.h"
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -49,3 +51,16 @@ void fsai::io::ensure_parent_dir(const std::string& path)
   }
 }
 //-----------------------------------------------------------------------------
+//-----------------------------------------------------------------------------
+void fsai::io::draw_chart(MPI_Comm comm, const std::string& script,
+                          const std::string& dir)
+{
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank != 0)
+    return;
+  const std::string cmd = std::string(FSAI_PYTHON) + " " + FSAI_SCRIPTS_DIR
+                          + "/" + script + " " + dir + " > /dev/null 2>&1";
+  if (std::system(cmd.c_str()) != 0)
+    fsai::log::warn("could not draw the chart of {} ({})", dir, cmd);
+}

@@ -12,4 +12,8 @@ void prepare_output_dir(MPI_Comm comm, const std::string& dir);
 
 /// Create the parent folder of `path` if missing (no-op if it exists)
 void ensure_parent_dir(const std::string& path);
+/// Rank 0 runs scripts/<script> on the run folder `dir` to draw a chart
+/// (optional: a missing matplotlib only warns)
+void draw_chart(MPI_Comm comm, const std::string& script,
+                const std::string& dir);
 } // namespace fsai::io

@@ -1,5 +1,5 @@
 // Copyright (C) 2026 fsai developers
-// Geometries of the published benchmarks (shared/references/).
+// Geometries of the published benchmarks (references/).
 #pragma once
 
 #include "MeshData.h"

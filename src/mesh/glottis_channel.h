@@ -34,7 +34,7 @@ struct ChannelSizes
   double h_inlet = 0;
 };
 
-/// The flow domain of the glottis scene (shared/DESIGN.md §2 "Glottis
+/// The flow domain of the glottis scene (docs/model.md "Glottis
 /// closure"): the symmetric half-channel 0 ≤ y ≤ H from x = −inlet_length
 /// to x = fold_length + outlet_length, less the fold (its surface a spline
 /// through the profile points). Facet groups "inlet", "outlet", "axis"

@@ -17,7 +17,7 @@ class FoldProfile;
 namespace fsai::mesh
 {
 /// Geometry of the acoustic domain of the voice scene ([voice] section,
-/// shared/DESIGN.md §2 "Acoustics", paper §2.4): the fixed flow domain
+/// docs/model.md §4): the fixed flow domain
 /// Ω^f_0 of the glottis scene (subglottal duct, the fold at rest, the
 /// supraglottal channel) continued by the vocal tract of a vowel to the
 /// lips and a half-disc radiation region beyond them, all as the symmetric

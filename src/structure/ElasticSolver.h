@@ -1,6 +1,6 @@
 // Copyright (C) 2026 fsai developers
 //
-// Elastic solid (shared/DESIGN.md E1, E4, E6, E7, E16–E18; forms in
+// Elastic solid (docs/model.md E1, E4, E6, E7, E16–E18; forms in
 // forms/structure.py): linear elasticity or St.Venant–Kirchhoff, P1/P2,
 // plane strain (2D) or 3D, Newmark (β, γ) with Rayleigh damping
 // D = ε1 M + ε2 K, Newton's method on R(u) = 0 every step, static solves
@@ -15,7 +15,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/la/petsc.h>
-#include <io/checkpoint.h>
+#include <io/run_state.h>
 #include <memory>
 #include <span>
 #include <string>
@@ -67,11 +67,11 @@ struct SolidParameters
   /// then depends on the iteration history at the Newton tolerance, as
   /// with newton_reuse, and on FSI3 at Δt 0.005 the drag developed a
   /// step-to-step oscillation after t = 6 s that the default run does not
-  /// show (README, Turek–Hron)
+  /// show (docs/benchmarks.md, Turek–Hron)
   bool newton_warm_start = false;
   /// Insertion of the Newton tangent: "coo" (common::CooMatrixAssembler:
   /// PETSc's COO interface on the pattern recorded at the first assembly;
-  /// on FSI3 the tangent's assembly took 0.35–0.55 of its time, stop 31)
+  /// on FSI3 the tangent's assembly took 0.35–0.55 of its time)
   /// or "dolfinx" (MatSetValuesBlockedLocal per cell); the same matrix to
   /// rounding
   std::string assembly = "coo";

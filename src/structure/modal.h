@@ -1,6 +1,6 @@
 // Copyright (C) 2026 fsai developers
 //
-// Modal analysis (shared/DESIGN.md §1 fsai_modal): K x = ω² M x with SLEPc,
+// Modal analysis (docs/model.md §1): K x = ω² M x with SLEPc,
 // shift-and-invert about 0. Dirichlet dofs have K rows/columns zero with
 // diagonal 1 and M rows/columns zero (diagonal 0): their eigenvalue is
 // infinite, so no spurious mode appears near the target. PETSc/SLEPc

@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 //
-// Checkpoint files of the restartable demos (`--checkpoint-every N`,
+// The run state of the restartable demos: checkpoint files (`--checkpoint-every
+// N`,
 // `--restart DIR`): a JSON document with the step, the state a step depends
 // on and the parameters of the run, written so that a kill at any moment
 // leaves either the previous or the new checkpoint, never a torn one.

@@ -1,5 +1,5 @@
 // Copyright (C) 2026 fsai developers
-#include "checkpoint.h"
+#include "run_state.h"
 #include "../common/errors.h"
 #include <cstdint>
 #include <cstdio>

@@ -1,0 +1,364 @@
+// Copyright (C) 2026 fsai developers
+#include "VoiceScene.h"
+#include <acoustics/sound.h>
+#include <acoustics/spectrum.h>
+#include <acoustics/tube_model.h>
+#include <cmath>
+#include <common/Parameters.h>
+#include <common/errors.h>
+#include <common/log.h>
+#include <common/timer.h>
+#include <fmt/ranges.h>
+#include <io/CsvWriter.h>
+#include <io/RunSummary.h>
+
+namespace ac = fsai::acoustics;
+
+//-----------------------------------------------------------------------------
+void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
+{
+  p.add("output", output, "output folder");
+  p.add_choice("vowel", vowel, {"u", "a", "i"},
+               "vowel of the shipped area functions (meshes/vowel_*.csv)");
+  p.add("area-function", area_function,
+        "area-function CSV (x_cm,area_cm2); overrides --vowel");
+  p.add_choice("tract", tract, {"vowel", "tube"},
+               "vocal tract: the vowel's, or a short straight tube");
+  p.add("tube.length", tube_length, "--tract tube: length [m]");
+  p.add("tube.area", tube_area, "--tract tube: area [m^2]");
+  p.add("p-sub", p_sub, "subglottal pressure [Pa]");
+  p.add("duration", duration, "simulated time [s]");
+  p.add("dt", dt, "time step of flow and sound [s]");
+  p.add("quick", quick,
+        "short coarse run for tests (coarser meshes, 0.04 s, dt 5e-5)");
+  p.add_choice("radiation", radiation, {"sommerfeld", "pml"},
+               "radiation boundary: Sommerfeld (with the curvature term) "
+               "or an absorbing layer");
+  p.add("layer", layer, "absorbing-layer thickness for --radiation pml [m]");
+  p.add("voice.yielding_walls", yielding_walls,
+        "supraglottal tract walls yield (--acoustics.wall_*; false: "
+        "rigid walls, resonances damped by radiation only)");
+  p.add_choice("voice.subglottal", subglottal, {"absorbing", "hard"},
+               "subglottal end of the acoustic domain: plane-wave "
+               "absorbing (anechoic trachea) or sound-hard");
+  p.add("mic_distance", mic_distance,
+        "microphone on the axis, this far beyond the lips [m]");
+  p.add("stats_from", stats_from,
+        "statistics and sound analysis over t >= stats_from * duration");
+  p.add("write_every", write_every, "XDMF output every N steps (0: none)");
+  p.add("wav_rate", wav_rate, "sample rate of sound.wav [Hz]");
+  p.add("check-result", check_result,
+        "fail unless the sound is finite and audible (SPL > 40 dB), its "
+        "f0 matches the fold's within --check.f0_tolerance and the fold "
+        "f0 is in the male range 85-155 Hz");
+  p.add("check.f0_tolerance", check_f0_tolerance,
+        "relative tolerance of --check-result on the sound's f0 (0: not "
+        "checked)");
+  run.bind(p);
+}
+//-----------------------------------------------------------------------------
+void fsai::voice::VoiceParameters::validate() const
+{
+  fsai::require_positive("--p-sub", p_sub);
+  fsai::require_positive("--duration", duration);
+  fsai::require_positive("--dt", dt);
+  fsai::require(dt <= duration / 10, "--dt", "<= --duration / 10", dt);
+  fsai::require_positive("--tube.length", tube_length);
+  fsai::require_positive("--tube.area", tube_area);
+  fsai::require_positive("--layer", layer);
+  fsai::require_positive("--mic_distance", mic_distance);
+  fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
+  fsai::require(write_every >= 0, "--write_every", ">= 0", write_every);
+  fsai::require(wav_rate == 44100 or wav_rate == 48000, "--wav_rate",
+                "44100 or 48000", wav_rate);
+  run.validate();
+}
+//-----------------------------------------------------------------------------
+fsai::voice::VoiceScene::VoiceScene()
+{
+  // Numerical damping in the sound's Newmark step (E21): γ = 0.6,
+  // β = (γ + ½)²/4. The trapezoidal rule (γ = ½) keeps every mode it is
+  // given undamped, and the closure events (the flow's jump when the slit
+  // shuts, the fold's impact) feed the ringing near 18 kHz (a few cells of
+  // the radiation mesh per wavelength, 2.7 steps per period): with γ = ½
+  // it grew at each closure until it was 97 % of the sound and biased the
+  // LPC. With γ = 0.6 a component at ωΔt = 2.3 loses 11 % of its amplitude
+  // per step; the formants of [u] at Δt 2e−5 gain the bandwidths 1, 16, 47
+  // and 125 Hz (F1..F4). Measured: bench/voice.py, u_*_trapezoidal
+  wave.newmark_gamma = 0.6;
+  wave.newmark_beta = 0.3025;
+}
+//-----------------------------------------------------------------------------
+void fsai::voice::VoiceScene::bind(fsai::common::Parameters& p)
+{
+  voice.bind(p);
+  source.bind(p);
+  glottis.bind(p);
+  wave.bind(p);
+  domain.bind(p);
+}
+//-----------------------------------------------------------------------------
+void fsai::voice::VoiceScene::apply_quick(const std::vector<std::string>& args)
+{
+  for (const auto& arg : args)
+    voice.quick |= arg == "--quick" or arg == "--quick=true";
+  if (!voice.quick)
+    return;
+  // Coarse flow and acoustic meshes, a larger step and a larger initial
+  // perturbation so the oscillation is under way within 0.04 s (the
+  // sound's f0 needs two periods in the window)
+  voice.duration = 0.04;
+  voice.dt = 5e-5;
+  glottis.fe.sizes.h_far = 1e-3;
+  glottis.fe.sizes.h_gap = 0.1e-3;
+  domain.h = 0.008;
+  glottis.fold.h0 = 0.15e-3;
+  voice.stats_from = 0.4;
+  voice.write_every = 0;
+}
+//-----------------------------------------------------------------------------
+void fsai::voice::VoiceScene::validate()
+{
+  voice.validate();
+  source.validate();
+  glottis.validate(voice.p_sub, voice.dt);
+  wave.validate();
+  domain.layer = voice.radiation == "pml" ? voice.layer : 0.0;
+  domain.validate();
+  fsai::require(voice.mic_distance < domain.radius, "--mic_distance",
+                "inside the radiation region (< --voice.radius)",
+                voice.mic_distance);
+  if (!voice.run.restart.empty())
+    voice.output = voice.run.restart; // continue in the run's own folder
+}
+//-----------------------------------------------------------------------------
+fsai::voice::VoiceTract
+fsai::voice::make_tract(const VoiceScene& s,
+                        const glottis::FoldProfile& profile)
+{
+  const auto& vp = s.voice;
+  const auto& geo = s.glottis.geometry;
+  const auto& wave = s.wave;
+  VoiceTract out;
+  out.label = vp.tract == "tube"
+                  ? "tube"
+                  : (vp.area_function.empty() ? vp.vowel : vp.area_function);
+  const mesh::AreaFunction vowel
+      = vp.tract == "tube"
+            ? mesh::uniform_tube(geo.outlet_length + vp.tube_length,
+                                 vp.tube_area)
+            : mesh::read_area_function(vp.area_function.empty()
+                                           ? mesh::vowel_file(vp.vowel)
+                                           : vp.area_function);
+  out.area = mesh::voice_tract(vowel, profile);
+  // Same walls as the FE model: the planar model's two walls of depth L_g
+  // per unit length
+  ac::TubeWall wall1d;
+  if (vp.yielding_walls)
+  {
+    wall1d = {wave.wall_mass, wave.wall_resistance, wave.wall_stiffness,
+              geo.depth};
+  }
+  const mesh::AreaFunction tract1d = mesh::resample(out.area, true, 5e-4);
+  for (const auto& r : ac::tube_resonances(tract1d, 5000.0, wave.c0, wave.rho0,
+                                           ac::LipEnd::flanged, -1.0, wall1d))
+  {
+    if (out.formants.size() < 4)
+    {
+      out.formants.push_back(r.f);
+      out.bandwidths.push_back(r.bandwidth);
+    }
+  }
+  // The same 1D model of the acoustic domain as built: its glottis stays
+  // open at the rest gap and leads to the subglottal duct and its end,
+  // which raises F1 above the closed-glottis value
+  ac::GlottalBranch branch{mesh::voice_subglottal(profile),
+                           vp.subglottal == "absorbing"};
+  for (const auto& r :
+       ac::tube_resonances(tract1d, 5000.0, wave.c0, wave.rho0,
+                           ac::LipEnd::flanged, -1.0, wall1d, branch))
+  {
+    if (out.domain_formants.size() < 4)
+      out.domain_formants.push_back(r.f);
+  }
+  fsai::log::info("tract: {} ({:.2f} cm, {} walls); transfer-function "
+                  "formants (1D, flanged lips) {::.0f} Hz, bandwidths "
+                  "{::.0f} Hz; with the acoustic domain's open rest glottis "
+                  "and {} subglottal end: {::.0f} Hz",
+                  out.area.source, 100 * out.area.length(),
+                  vp.yielding_walls ? "yielding" : "rigid", out.formants,
+                  out.bandwidths, vp.subglottal, out.domain_formants);
+  return out;
+}
+//-----------------------------------------------------------------------------
+fsai::voice::Sound fsai::voice::make_sound(MPI_Comm comm, const VoiceScene& s,
+                                           const glottis::FoldProfile& profile,
+                                           const VoiceTract& tract)
+{
+  const auto& vp = s.voice;
+  const auto& geo = s.glottis.geometry;
+  const auto& vg = s.domain;
+  Sound out;
+  {
+    fsai::common::ScopedTimer t("demo: acoustic mesh");
+    out.mesh = mesh::voice_domain(comm, profile, tract.area, vg);
+  }
+  const auto& am = out.mesh;
+  auto facets = [&](const char* name)
+  { return am.facet_tags->find(am.facet_tag(name)); };
+  ac::WaveBoundaries wb;
+  // Subglottal end: absorbing by default (an anechoic trachea, A4). A
+  // sound-hard end closes a 20 mm cavity that the rest glottis (the
+  // acoustic domain is fixed, the gap stays open) joins to the tract as a
+  // Helmholtz resonator (measured: a 770 Hz peak that dominated the sound,
+  // and F1 lowered by the cavity's compliance)
+  if (vp.subglottal == "absorbing")
+    wb.absorbing = facets("inlet");
+  if (vp.yielding_walls)
+  {
+    // The tract's walls from the fold's superior attachment to the lips,
+    // as in the 1D model (not the subglottal duct, the baffle or the step
+    // where the channel meets the vowel's tract), A3
+    const double x0 = geo.fold_length,
+                 x_step = geo.fold_length + geo.outlet_length,
+                 x_end = geo.fold_length + tract.area.length();
+    wb.yielding = am.facets_where(
+        "wall",
+        [&](const double* x)
+        {
+          return x[0] > x0 and x[0] < x_end - 1e-9
+                 and std::abs(x[0] - x_step) > 1e-9;
+        });
+  }
+  wb.radiation = facets("radiation");
+  wb.radiation_beta = 0.5 / (vg.radius + vg.layer); // planar: 1/(2R)
+  wb.vibrating = facets("fold");
+  std::shared_ptr<dolfinx::fem::Function<double>> sigma;
+  out.x_lips = geo.fold_length + tract.area.length();
+  if (vp.radiation == "pml")
+  {
+    sigma = ac::absorbing_layer(
+        am.mesh, am.cell_tags->find(am.cell_tag("layer")),
+        {out.x_lips, 0.0, 0.0}, vg.radius, vg.layer, s.wave.c0, 1e-3);
+  }
+  out.solver = std::make_unique<ac::WaveSolver>(am.mesh, 1, false, s.wave, wb,
+                                                vp.dt, sigma, true);
+  return out;
+}
+//-----------------------------------------------------------------------------
+fsai::voice::VoiceMeasures fsai::voice::analyse_voice(MPI_Comm comm, const VoiceScene& s,
+                                const VoiceTract& tract,
+                                const std::vector<double>& t,
+                                const std::vector<double>& g,
+                                const std::vector<double>& Q,
+                                const std::vector<double>& p_mic,
+                                io::RunSummary& summary)
+{
+  const auto& vp = s.voice;
+  const double t0 = vp.stats_from * vp.duration;
+  const auto cs = glottis::cycle_stats(t, g, Q, t0, 0.0);
+  std::vector<double> mic;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t0)
+      mic.push_back(p_mic[i]);
+  // f0 search down to 60 Hz, or to two periods in a short window
+  const double f0 = ac::fundamental_frequency(
+      mic, vp.dt, std::max(60.0, 2.6 / (vp.dt * double(mic.size()))));
+  if (!std::isfinite(f0))
+  {
+    fsai::log::warn("the sound's f0 could not be estimated (window {:.4f} s: "
+                    "too short or silent)",
+                    vp.dt * double(mic.size()));
+  }
+  // Formants of the voice: LPC of its periodic part (pitch-synchronous
+  // average over the window's whole periods at the sound's own f0,
+  // repeated over the window's length, A8). Transients — an impact, the
+  // start-up — leave the lightly damped upper resonances ringing at their
+  // own frequencies for longer than the run; LPC of the raw window puts
+  // poles on those lines (kept as formants_lpc_window_hz for comparison)
+  double periodic_fraction = NAN;
+  const std::vector<double> cycle
+      = ac::periodic_part(mic, vp.dt, f0, &periodic_fraction);
+  const std::vector<double> formants_window = ac::lpc_formants(mic, vp.dt);
+  std::vector<double> formants = formants_window;
+  if (!cycle.empty())
+  {
+    std::vector<double> voiced;
+    while (voiced.size() + cycle.size()
+           <= std::max(mic.size(), 2 * cycle.size()))
+      voiced.insert(voiced.end(), cycle.begin(), cycle.end());
+    formants = ac::lpc_formants(voiced, vp.dt);
+  }
+  const double spl = ac::spl_db(mic);
+  auto errors = [&](const std::vector<double>& ref)
+  {
+    std::vector<double> e;
+    for (std::size_t k = 0; k < 2 and k < formants.size() and k < ref.size();
+         ++k)
+      e.push_back(100.0 * (formants[k] - ref[k]) / ref[k]);
+    return e;
+  };
+  fsai::log::info(
+      "fold: {} cycles, f0 {:.2f} Hz, open quotient {:.3f}, peak flow {:.3e} "
+      "m³/s, closes every cycle: {}; sound at the microphone: f0 {:.2f} Hz "
+      "({:+.2f} %), SPL {:.1f} dB, periodic part {:.1f} % of the energy, its "
+      "LPC formants {::.0f} Hz (whole window: {::.0f} Hz) vs tract {::.0f} "
+      "Hz (closed glottis), {::.0f} Hz (as modelled)",
+      cs.cycles, cs.f0_hz, cs.open_quotient, cs.q_peak,
+      cs.closes_every_cycle ? "yes" : "no", f0,
+      100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, 100 * periodic_fraction,
+      formants, formants_window, tract.formants, tract.domain_formants);
+
+  // Spectrum of the sound (Hann window) for the chart
+  {
+    std::vector<double> w(mic.size());
+    for (std::size_t i = 0; i < mic.size(); ++i)
+      w[i] = mic[i] * (0.5 - 0.5 * std::cos(2 * M_PI * i / double(mic.size())));
+    const auto [f, A] = ac::amplitude_spectrum(w, vp.dt, 4);
+    io::CsvWriter sc(comm, vp.output + "/spectrum.csv", {"f_hz", "level_db"});
+    for (std::size_t i = 1; i < f.size() and f[i] <= 5000.0; ++i)
+      sc.row({f[i], 20 * std::log10(std::max(A[i], 1e-30) / 20e-6)});
+  }
+  const std::string wav = vp.output + "/sound.wav";
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0)
+    ac::write_wav(wav, ac::resample(p_mic, vp.dt, vp.wav_rate), vp.wav_rate);
+
+  summary.set("f0_hz", f0);
+  summary.set("f0_fold_hz", cs.f0_hz);
+  summary.set("formants_from_sound_hz", formants);
+  summary.set("formants_lpc_window_hz", formants_window);
+  summary.set("periodic_fraction", periodic_fraction);
+  summary.set("formant_errors_percent", errors(tract.formants));
+  summary.set("domain_formant_errors_percent", errors(tract.domain_formants));
+  summary.set("spl_db", spl);
+  summary.set("sim_time_s", vp.duration);
+  summary.set("wav", wav);
+  summary.set("open_quotient", cs.open_quotient);
+  summary.set("q_peak_m3s", cs.q_peak);
+  summary.set("cycles", cs.cycles);
+  summary.set("closes_every_cycle", cs.closes_every_cycle);
+
+  return {f0, cs.f0_hz, spl};
+}
+//-----------------------------------------------------------------------------
+void fsai::voice::check_voice(const VoiceScene& s, const VoiceMeasures& m)
+{
+  const auto& vp = s.voice;
+  if (!vp.check_result)
+    return;
+  auto fail = [](const std::string& what)
+  { throw std::runtime_error("check failed: " + what); };
+  if (!(std::isfinite(m.spl_db) and m.spl_db > 40.0))
+    fail(fmt::format("sound level {} dB (want finite, > 40 dB)", m.spl_db));
+  if (!(m.f0_fold_hz >= 85.0 and m.f0_fold_hz <= 155.0))
+    fail(fmt::format("fold f0 {} Hz outside 85-155 Hz", m.f0_fold_hz));
+  if (vp.check_f0_tolerance > 0
+      and !(std::abs(m.f0_hz - m.f0_fold_hz)
+            <= vp.check_f0_tolerance * m.f0_fold_hz))
+  {
+    fail(fmt::format("sound f0 {} Hz vs fold f0 {} Hz (tolerance {} %)",
+                     m.f0_hz, m.f0_fold_hz, 100 * vp.check_f0_tolerance));
+  }
+}

@@ -1,0 +1,105 @@
+// Copyright (C) 2026 fsai developers
+//
+// The voice's flow → sound coupling, one way, once per flow step
+// (docs/model.md §4, A1–A6): the acoustic domain is fixed with the
+// glottis at rest and contains the flow domain Ω^f_0.
+//  - Lighthill's source ρ0 v v (E15) from the converged flow, transferred in
+//    the reference configuration and tapered to zero before the flow outlet
+//    and after the inlet (A1);
+//  - the fold surface's acceleration, ∂p'/∂n = −ρ0 a·n (A2), while the slit
+//    beside it is open;
+//  - the glottal flow Q(t) as a ±Q volume-source pair either side of the
+//    fold (A6: the valve's monopole, which incompressible flow does not put
+//    into ρ0 v v);
+//  - the slit law of the flow's current gap in the acoustic cells under the
+//    fold (A5: inertia g0/g, viscous and jet resistance; closed when the
+//    folds touch), applied by the wave solver's SlitLaw.
+#pragma once
+#include <acoustics/FlowSource.h>
+#include <acoustics/SlitLaw.h>
+#include <acoustics/WaveSolver.h>
+#include <array>
+#include <glottis/FlowGlottis.h>
+#include <io/run_state.h>
+#include <memory>
+#include <mesh/MeshData.h>
+#include <vector>
+
+namespace fsai::common
+{
+class Parameters;
+}
+
+namespace fsai::voice
+{
+/// Options of the coupling ([voice] section)
+struct VoiceSourceParameters
+{
+  bool taper = true;          ///< taper Lighthill's source (A1)
+  bool lighthill = true;      ///< Lighthill's source on
+  bool wall = true;           ///< vibrating fold surface on
+  bool source_average = true; ///< Lighthill velocity at the step midpoint
+  // The glottal volume flow as a volume-source pair and the acoustic
+  // glottis following the flow's (the slit law): both on, as together they
+  // give the tract's F1/F2 (docs/voice.md)
+  bool monopole = true;
+  double monopole_length = 0.005; ///< [m] each source's extent along x
+  bool glottal_slit = true;
+  bool slit_lighthill = false; ///< Lighthill's force in the slit's law
+  double taper_start = 0.02;   ///< ramp from here before the flow outlet [m]
+  double taper_end = 0.005;    ///< to zero here before the outlet [m]
+  double taper_inlet = 0.005;  ///< ramp up over this length after the inlet [m]
+
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
+};
+
+class VoiceSource
+{
+public:
+  /// Sets up the coupling on the acoustic domain `am` of `sound`: taper,
+  /// monopole pair, slit, fold-surface nodes (collective)
+  VoiceSource(MPI_Comm comm, const VoiceSourceParameters& p,
+              const glottis::FlowGlottisSetup& setup,
+              const glottis::FoldProfile& profile,
+              const glottis::FlowGlottis& flow, const mesh::MeshData& am,
+              acoustics::WaveSolver& sound, double dt);
+
+  /// Start (or continue after a restart) from the flow's current state;
+  /// `q_last` the last converged glottal flow [m³/s]
+  void start(const glottis::FlowGlottis& flow, double q_last);
+  /// The sound's source data for the step the flow just took (`s`)
+  void apply(const glottis::FlowGlottis& flow, const glottis::Sample& s);
+
+  /// The source's last velocity in a checkpoint and back
+  void save(io::RankState& state) const;
+  void load(const std::vector<io::RankState>& ranks);
+
+private:
+  void set_slit_law(const std::vector<std::array<double, 2>>& surface,
+                    const glottis::Sample& s);
+  void set_wall_acceleration(const glottis::FlowGlottis& flow,
+                             const std::vector<std::array<double, 2>>& surface);
+  double open_fraction(double x,
+                       const std::vector<std::array<double, 2>>& surface) const;
+
+  VoiceSourceParameters _par;
+  const glottis::FoldProfile& _profile;
+  acoustics::WaveSolver& _sound;
+  double _dt, _g_min, _mu, _rho;
+  std::unique_ptr<acoustics::FlowSource> _transfer;
+  std::shared_ptr<dolfinx::fem::Function<double>> _v_new, _v_old;
+  std::array<std::size_t, 2> _monopole{};
+  std::shared_ptr<acoustics::SlitLaw> _slit;
+  std::vector<double> _slit_x, _slit_g0, _inertia, _resistance;
+  std::vector<std::int32_t> _fold_dofs;
+  std::vector<std::array<double, 2>> _fold_X;
+  std::array<double, 2> _qdot_prev{};
+  double _q_monopole = 0;
+};
+
+/// Height of the polyline `surface` (points ordered along x) above x: the
+/// lowest crossing of the vertical line at x (+∞ if none)
+double surface_height(const std::vector<std::array<double, 2>>& surface,
+                      double x);
+} // namespace fsai::voice
