@@ -85,8 +85,8 @@ void fsai::acoustics::SlitLaw::attach(const SlitContext& context)
     return std::make_shared<fem::FunctionSpace>(
         fem::create_functionspace(factory, name, mesh));
   };
-  _kappa = std::make_shared<fem::Function<double>>(space(
-      acoustic_forms::functionspace_k_section(tdim, degree), "kappa"));
+  _kappa = std::make_shared<fem::Function<double>>(
+      space(acoustic_forms::functionspace_k_section(tdim, degree), "kappa"));
   _kappa->x()->set(1.0);
   _flux = std::make_shared<fem::Function<double>>(space(
       acoustic_forms::functionspace_L_section(tdim, degree), "slit_flux"));

@@ -48,8 +48,7 @@ void ac::FormantParameters::bind(fsai::common::Parameters& p)
 //-----------------------------------------------------------------------------
 void ac::FormantParameters::validate() const
 {
-  fsai::require_positive("--elements_per_wavelength",
-                         elements_per_wavelength);
+  fsai::require_positive("--elements_per_wavelength", elements_per_wavelength);
   fsai::require(h >= 0, "--h", ">= 0", h);
   fsai::require_positive("--mic_distance", mic_distance);
   fsai::require(formants >= 1 and formants <= 10, "--formants", "in [1, 10]",
@@ -123,9 +122,8 @@ ac::Formants ac::formants_fe(MPI_Comm comm, const FormantParameters& fp,
   geo.model = fp.model;
   geo.open = fp.radiation != "pressure-release";
   geo.layer = fp.radiation == "pml" ? fp.layer : 0.0;
-  geo.h = fp.h > 0
-              ? fp.h
-              : wave.c0 / (pulse.f_max * fp.elements_per_wavelength);
+  geo.h
+      = fp.h > 0 ? fp.h : wave.c0 / (pulse.f_max * fp.elements_per_wavelength);
   fsai::mesh::MeshData m = [&]
   {
     fsai::common::ScopedTimer t("formants: mesh");
@@ -152,10 +150,9 @@ ac::Formants ac::formants_fe(MPI_Comm comm, const FormantParameters& fp,
         [&](const double* x)
         {
           return x[0] < L - 1e-9
-                 and std::abs(x[1])
-                         <= fsai::mesh::tract_half_width(
-                                geo, af.area_at(x[0], geo.smooth))
-                                + 0.5 * geo.wall;
+                 and std::abs(x[1]) <= fsai::mesh::tract_half_width(
+                                           geo, af.area_at(x[0], geo.smooth))
+                                           + 0.5 * geo.wall;
         });
   }
   if (geo.open)
@@ -172,8 +169,7 @@ ac::Formants ac::formants_fe(MPI_Comm comm, const FormantParameters& fp,
 
   // Pulse run with progress and p' snapshots
   const int steps = int(std::ceil(pulse.duration / pulse.dt()));
-  const int every
-      = fp.snapshots > 0 ? std::max(1, steps / fp.snapshots) : 0;
+  const int every = fp.snapshots > 0 ? std::max(1, steps / fp.snapshots) : 0;
   std::unique_ptr<fsai::io::TimeSeriesWriter> xdmf;
   fsai::io::Progress progress("step", steps, 5.0);
   fsai::log::info("Pulse run: dt = {:.3e} s, {} steps, h = {:.2e} m",
@@ -189,8 +185,7 @@ ac::Formants ac::formants_fe(MPI_Comm comm, const FormantParameters& fp,
           {
             xdmf = std::make_unique<fsai::io::TimeSeriesWriter>(
                 fp.output + "/pressure.xdmf",
-                std::vector<fsai::io::TimeSeriesWriter::Field>{
-                    s.pressure()});
+                std::vector<fsai::io::TimeSeriesWriter::Field>{s.pressure()});
           }
           xdmf->write(s.time());
         }
@@ -215,14 +210,12 @@ ac::Formants ac::formants_fe(MPI_Comm comm, const FormantParameters& fp,
     bandwidths.push_back(p.bandwidth - H.window_bandwidth);
   }
   {
-    fsai::io::CsvWriter csv(comm,
-                            fp.output + "/transfer_function.csv",
+    fsai::io::CsvWriter csv(comm, fp.output + "/transfer_function.csv",
                             {"f_hz", "h_db", "h_mic_db", "h_1d_db"});
-    for (std::size_t k = 1; k < H.f.size() and H.f[k] <= pulse.f_max;
-         ++k)
+    for (std::size_t k = 1; k < H.f.size() and H.f[k] <= pulse.f_max; ++k)
     {
-      auto t1 = ac::tube_response(af1d, H.f[k], wave.c0, wave.rho0, lip,
-                                  x_obs, wall1d);
+      auto t1 = ac::tube_response(af1d, H.f[k], wave.c0, wave.rho0, lip, x_obs,
+                                  wall1d);
       csv.row({H.f[k], 20 * std::log10(std::abs(H.h[k])),
                geo.open ? 20 * std::log10(std::abs(Hmic.h[k])) : NAN,
                20 * std::log10(std::abs(t1.h_obs))});
@@ -234,8 +227,7 @@ ac::Formants ac::formants_fe(MPI_Comm comm, const FormantParameters& fp,
     if (geo.open)
       cols.push_back("p_mic_pa");
     cols.push_back("energy_j");
-    fsai::io::CsvWriter csv(comm, fp.output + "/time_series.csv",
-                            cols);
+    fsai::io::CsvWriter csv(comm, fp.output + "/time_series.csv", cols);
     for (std::size_t k = 0; k < r.t.size(); ++k)
     {
       std::vector<double> row = {r.t[k], r.U[k]};
@@ -264,9 +256,9 @@ void ac::check_formants(const FormantParameters& fp, const Formants& fe,
   {
     if (k >= dev.size() or std::abs(dev[k]) > 3.0)
     {
-      throw std::runtime_error(fmt::format(
-          "check failed: F{} deviates from the 1D model by {} %", k + 1,
-          k < dev.size() ? dev[k] : NAN));
+      throw std::runtime_error(
+          fmt::format("check failed: F{} deviates from the 1D model by {} %",
+                      k + 1, k < dev.size() ? dev[k] : NAN));
     }
   }
   // With yielding walls the wall losses set B1 (the lip end's are small):

@@ -7,9 +7,9 @@
 // formants are the peaks of |H|, the bandwidths their −3 dB widths. The
 // 1D chain-matrix model of the same tract is the independent check.
 #pragma once
+#include <acoustics/WaveSolver.h>
 #include <acoustics/pulse_response.h>
 #include <acoustics/tube_model.h>
-#include <acoustics/WaveSolver.h>
 #include <mesh/area_function.h>
 #include <mesh/vocal_tract.h>
 #include <mpi.h>

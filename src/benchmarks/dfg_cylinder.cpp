@@ -90,8 +90,7 @@ void fsai::benchmarks::dfg_cylinder::run(MPI_Comm comm, const DfgCylinder& s,
   const auto cyl = m.facet_tags->find(m.facet_tag("cylinder"));
   const bool steady = cp.dfg_case == "2D-1";
   fsai::fluid::FluidSolver flow(m.mesh, b, fp, cp.dt);
-  fsai::log::info("DFG {}: h = {:.4f} m, {} dofs", cp.dfg_case, h,
-                  flow.dofs());
+  fsai::log::info("DFG {}: h = {:.4f} m, {} dofs", cp.dfg_case, h, flow.dofs());
 
   // 2. Inflow 4 U_m y (H − y)/H², U_mean = 2/3 U_m
   const double H = 0.41, D = 0.1;
@@ -149,8 +148,7 @@ void fsai::benchmarks::dfg_cylinder::run(MPI_Comm comm, const DfgCylinder& s,
     if (cp.ale_amplitude > 0)
     {
       const double A = cp.ale_amplitude, w = 2 * M_PI * cp.ale_frequency;
-      auto d = [=](std::array<double, 3> X,
-                   double t) -> std::array<double, 3>
+      auto d = [=](std::array<double, 3> X, double t) -> std::array<double, 3>
       {
         const double r = std::hypot(X[0] - 0.2, X[1] - 0.2);
         const double s = A * std::sin(w * t) * std::sin(M_PI * X[0] / 2.2)
@@ -202,8 +200,7 @@ void fsai::benchmarks::dfg_cylinder::run(MPI_Comm comm, const DfgCylinder& s,
       if (cp.check_result and !(dev < 1e-3))
       {
         throw std::runtime_error(fmt::format(
-            "check failed: c_D on the moving mesh deviates by {:.2e}",
-            dev));
+            "check failed: c_D on the moving mesh deviates by {:.2e}", dev));
       }
     }
     if (cp.check_result and cp.ale_amplitude == 0
@@ -252,10 +249,9 @@ void fsai::benchmarks::dfg_cylinder::run(MPI_Comm comm, const DfgCylinder& s,
       if (cls[i - 1] < 0 and cls[i] >= 0)
         cross.push_back(ts[i - 1]
                         + cp.dt * -cls[i - 1] / (cls[i] - cls[i - 1]));
-    const double f
-        = cross.size() >= 2
-              ? (cross.size() - 1) / (cross.back() - cross.front())
-              : NAN;
+    const double f = cross.size() >= 2
+                         ? (cross.size() - 1) / (cross.back() - cross.front())
+                         : NAN;
     const double St = case3 ? NAN : f * D / Umean;
     if (case3)
     {
@@ -270,12 +266,12 @@ void fsai::benchmarks::dfg_cylinder::run(MPI_Comm comm, const DfgCylinder& s,
                        / cp.t_end;
     if (!case3)
     {
-      fsai::log::info(
-          "2D-2: c_D,max = {:.4f} (ref 3.2274, {:+.2f}%), c_L,max "
-          "= {:.4f} (ref 0.9866, {:+.2f}%), St = {:.4f} (ref "
-          "0.3018, {:+.2f}%), {:.1f} s wall per simulated s",
-          cd_max, 100 * (cd_max / 3.2274 - 1), cl_max,
-          100 * (cl_max / 0.9866 - 1), St, 100 * (St / 0.30184 - 1), wps);
+      fsai::log::info("2D-2: c_D,max = {:.4f} (ref 3.2274, {:+.2f}%), c_L,max "
+                      "= {:.4f} (ref 0.9866, {:+.2f}%), St = {:.4f} (ref "
+                      "0.3018, {:+.2f}%), {:.1f} s wall per simulated s",
+                      cd_max, 100 * (cd_max / 3.2274 - 1), cl_max,
+                      100 * (cl_max / 0.9866 - 1), St, 100 * (St / 0.30184 - 1),
+                      wps);
       summary.set("strouhal", St);
     }
     summary.set("cd_max", cd_max);

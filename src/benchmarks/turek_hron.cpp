@@ -302,44 +302,46 @@ struct CaseSetting
   bool lagged_pc = false;
 };
 // The validated settings (docs/validation.md)
-const std::map<std::string, CaseSetting> validated = {
-    {"CFD1", {0.02, 0.002, 0.05, 6.0, 1.0}},
-    {"CFD2", {0.01, 0.001, 0.05, 6.0, 1.0}},
-    // not validated: the coarse mesh at a resolving step
-    {"CFD3", {0.04, 0.004, 0.005, 8.0, 1.0}},
-    {"CSM1", {0.04, 0.004, 0.05, 6.0, 1.0}},
-    {"CSM2", {0.04, 0.004, 0.05, 6.0, 1.0}},
-    {"CSM3", {0.04, 0.004, 0.005, 10.0, 5.0}},
-    {"FSI1", {0.02, 0.002, 0.1, 12.0, 1.0}},
-    {"FSI2", {0.03, 0.003, 0.0025, 12.0, 1.5, true, "direct"}},
-    {"FSI3", {0.04, 0.004, 0.0025, 6.0, 1.0, true, "iterative", true}}};
+const std::map<std::string, CaseSetting> validated
+    = {{"CFD1", {0.02, 0.002, 0.05, 6.0, 1.0}},
+       {"CFD2", {0.01, 0.001, 0.05, 6.0, 1.0}},
+       // not validated: the coarse mesh at a resolving step
+       {"CFD3", {0.04, 0.004, 0.005, 8.0, 1.0}},
+       {"CSM1", {0.04, 0.004, 0.05, 6.0, 1.0}},
+       {"CSM2", {0.04, 0.004, 0.05, 6.0, 1.0}},
+       {"CSM3", {0.04, 0.004, 0.005, 10.0, 5.0}},
+       {"FSI1", {0.02, 0.002, 0.1, 12.0, 1.0}},
+       {"FSI2", {0.03, 0.003, 0.0025, 12.0, 1.5, true, "direct"}},
+       {"FSI3", {0.04, 0.004, 0.0025, 6.0, 1.0, true, "iterative", true}}};
 // --quick: a coarse look (FSI1/CFD1/CSM1 as the tests run them)
-const std::map<std::string, CaseSetting> quick = {
-    {"CFD1", {0.04, 0.004, 0.05, 6.0, 1.0}},
-    {"CFD2", {0.04, 0.004, 0.05, 6.0, 1.0}},
-    {"CFD3", {0.04, 0.004, 0.01, 4.0, 1.0}},
-    {"CSM1", {0.04, 0.004, 0.05, 6.0, 1.0}},
-    {"CSM2", {0.04, 0.004, 0.05, 6.0, 1.0}},
-    {"CSM3", {0.04, 0.004, 0.01, 4.0, 2.0}},
-    {"FSI1", {0.04, 0.004, 0.05, 6.0, 1.0}},
-    {"FSI2", {0.04, 0.004, 0.005, 4.0, 1.0, true, "direct"}},
-    {"FSI3", {0.04, 0.004, 0.005, 2.0, 0.5, true, "iterative", true}}};
+const std::map<std::string, CaseSetting> quick
+    = {{"CFD1", {0.04, 0.004, 0.05, 6.0, 1.0}},
+       {"CFD2", {0.04, 0.004, 0.05, 6.0, 1.0}},
+       {"CFD3", {0.04, 0.004, 0.01, 4.0, 1.0}},
+       {"CSM1", {0.04, 0.004, 0.05, 6.0, 1.0}},
+       {"CSM2", {0.04, 0.004, 0.05, 6.0, 1.0}},
+       {"CSM3", {0.04, 0.004, 0.01, 4.0, 2.0}},
+       {"FSI1", {0.04, 0.004, 0.05, 6.0, 1.0}},
+       {"FSI2", {0.04, 0.004, 0.005, 4.0, 1.0, true, "direct"}},
+       {"FSI3", {0.04, 0.004, 0.005, 2.0, 0.5, true, "iterative", true}}};
 } // namespace
 
 //-----------------------------------------------------------------------------
 void TurekHronParameters::bind(fsai::common::Parameters& p)
 {
   p.add("output", output, "output folder");
-  p.add_choice("case", bench_case,
-               {"CFD1", "CFD2", "CFD3", "CSM1", "CSM2", "CSM3", "FSI1", "FSI2",
-                "FSI3"},
-               "benchmark case");
+  p.add_choice(
+      "case", bench_case,
+      {"CFD1", "CFD2", "CFD3", "CSM1", "CSM2", "CSM3", "FSI1", "FSI2", "FSI3"},
+      "benchmark case");
   p.add("h", h, "far-field mesh size [m] (default: the case's validated one)");
-  p.add("h_i", h_i, "mesh size at the cylinder and the beam [m] (default: "
-                    "the case's validated one)");
+  p.add("h_i", h_i,
+        "mesh size at the cylinder and the beam [m] (default: "
+        "the case's validated one)");
   p.add("dt", dt, "time step [s] (default: the case's validated one)");
-  p.add("t_end", t_end, "simulated time [s] (default: the case's validated "
-                        "one)");
+  p.add("t_end", t_end,
+        "simulated time [s] (default: the case's validated "
+        "one)");
   p.add("window", window,
         "periodic cases: statistics over the last WINDOW seconds");
   p.add("load_steps", load_steps, "CSM1/CSM2: load increments");

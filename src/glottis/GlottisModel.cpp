@@ -57,15 +57,15 @@ fold_fields_of(fsai::glottis::ElasticFold& fold)
 
 // Reduced model: the state is three pairs and the load, in the JSON
 //-----------------------------------------------------------------------------
-void fsai::glottis::BernoulliGlottis::checkpoint(
-    nlohmann::json& scalars, std::optional<io::RankState>&)
+void fsai::glottis::BernoulliGlottis::checkpoint(nlohmann::json& scalars,
+                                                 std::optional<io::RankState>&)
 {
   const auto st = state();
   scalars["state"] = {{"t", st.t}, {"fold", st.fold}, {"load", st.load}};
 }
 //-----------------------------------------------------------------------------
-void fsai::glottis::BernoulliGlottis::restore(
-    const nlohmann::json& checkpoint, const std::vector<io::RankState>&)
+void fsai::glottis::BernoulliGlottis::restore(const nlohmann::json& checkpoint,
+                                              const std::vector<io::RankState>&)
 {
   const auto& st = checkpoint.at("state");
   set_state({st.at("t").get<double>(),

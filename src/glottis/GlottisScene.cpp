@@ -150,8 +150,8 @@ fsai::glottis::GlottisScene::make_model(MPI_Comm comm,
   if (scene.fold == "elastic" and fe)
   {
     return std::make_unique<ElasticFlowGlottis>(
-        comm, profile, elastic, setup.contact, setup.fe, setup.fluid,
-        setup.ale, setup.coupling, log, rows_kept);
+        comm, profile, elastic, setup.contact, setup.fe, setup.fluid, setup.ale,
+        setup.coupling, log, rows_kept);
   }
   if (scene.fold == "elastic")
   {
@@ -161,10 +161,9 @@ fsai::glottis::GlottisScene::make_model(MPI_Comm comm,
   }
   if (fe)
   {
-    return std::make_unique<FlowGlottis>(comm, profile, setup.fold,
-                                         setup.contact, setup.fe, setup.fluid,
-                                         setup.ale, setup.coupling, log,
-                                         rows_kept);
+    return std::make_unique<FlowGlottis>(
+        comm, profile, setup.fold, setup.contact, setup.fe, setup.fluid,
+        setup.ale, setup.coupling, log, rows_kept);
   }
   return std::make_unique<BernoulliGlottis>(profile, setup.fold, setup.contact,
                                             bernoulli());
@@ -229,8 +228,7 @@ void fsai::glottis::report_limit_cycle(const GlottisScene& s,
                                        const std::vector<double>& t,
                                        const std::vector<double>& g,
                                        const std::vector<double>& Q,
-                                       double max_penetration,
-                                       double loop_wall,
+                                       double max_penetration, double loop_wall,
                                        io::RunSummary& summary)
 {
   const auto& sp = s.scene;
@@ -249,9 +247,9 @@ void fsai::glottis::report_limit_cycle(const GlottisScene& s,
       "penetration over the whole run (start-up included) {:.3e} m; time "
       "loop {:.2f} s wall = {:.3g} s per simulated s",
       t0, cs.cycles, cs.f0_hz, cs.open_quotient, cs.q_peak,
-      cs.closes_every_cycle ? "yes" : "no", cs.closed_leakage,
-      cs.gap_amplitude, 100 * cs.period_cv, 100 * cs.q_peak_cv,
-      max_penetration, loop_wall, loop_wall / sp.duration);
+      cs.closes_every_cycle ? "yes" : "no", cs.closed_leakage, cs.gap_amplitude,
+      100 * cs.period_cv, 100 * cs.q_peak_cv, max_penetration, loop_wall,
+      loop_wall / sp.duration);
   summary.set("f0_hz", cs.f0_hz);
   summary.set("open_quotient", cs.open_quotient);
   summary.set("q_peak_m3s", cs.q_peak);

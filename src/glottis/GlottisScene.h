@@ -37,11 +37,11 @@ struct GlottisSceneParameters
   double dt = 2e-5;       ///< [s]
   double rho = 1.2;       ///< [kg/m³]
   double separation_ratio = 1.2;
-  double viscosity = 1.8e-5;       ///< [Pa s]
-  double y_floor = 0.2e-6;         ///< [m]
-  double y_sep_min = 20e-6;        ///< [m]
-  double stats_from = 0.5;         ///< statistics over t ≥ stats_from · duration
-  int write_every = 50;            ///< XDMF every N steps (0: none)
+  double viscosity = 1.8e-5; ///< [Pa s]
+  double y_floor = 0.2e-6;   ///< [m]
+  double y_sep_min = 20e-6;  ///< [m]
+  double stats_from = 0.5;   ///< statistics over t ≥ stats_from · duration
+  int write_every = 50;      ///< XDMF every N steps (0: none)
   std::vector<double> onset_sweep; ///< p_sub values of the stability sweep
   std::string replay; ///< fe: a series.csv whose fold states move the mesh
   double ramp = 5e-3; ///< elastic + Bernoulli: p_sub ramp [s]

@@ -1,7 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "RunLoop.h"
-#include "RunSummary.h"
 #include "../common/log.h"
+#include "RunSummary.h"
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
@@ -68,8 +68,8 @@ double fsai::io::RunLoop::run(long n, const RunHooks& hooks)
       // inverted cell, a solver failure): the last good fields are written
       // for inspection before the error ends the run
       const std::string path = _dir + "/last_good.xdmf";
-      const auto t_good = hooks.last_good ? hooks.last_good(path)
-                                          : std::optional<double>{};
+      const auto t_good
+          = hooks.last_good ? hooks.last_good(path) : std::optional<double>{};
       if (!t_good)
         throw;
       throw std::runtime_error(fmt::format(
@@ -89,7 +89,6 @@ double fsai::io::RunLoop::run(long n, const RunHooks& hooks)
     _options.kill_if_requested(k);
     progress.update(double(k), hooks.progress ? hooks.progress() : "");
   }
-  return std::chrono::duration<double>(std::chrono::steady_clock::now()
-                                       - start)
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
       .count();
 }

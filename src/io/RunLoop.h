@@ -37,8 +37,7 @@ struct RunHooks
   std::function<StepReport(long k)> step;
   /// The state for a checkpoint: scalars merged into checkpoint.json and
   /// this rank's fields (none: a state held by scalars alone)
-  std::function<void(nlohmann::json& scalars,
-                     std::optional<RankState>& fields)>
+  std::function<void(nlohmann::json& scalars, std::optional<RankState>& fields)>
       save;
   /// A failed step: write the last good fields to `path` and return their
   /// time (nullopt: nothing to write, the error is passed on as it is)

@@ -222,13 +222,12 @@ fsai::voice::Sound fsai::voice::make_sound(MPI_Comm comm, const VoiceScene& s,
     const double x0 = geo.fold_length,
                  x_step = geo.fold_length + geo.outlet_length,
                  x_end = geo.fold_length + tract.area.length();
-    wb.yielding = am.facets_where(
-        "wall",
-        [&](const double* x)
-        {
-          return x[0] > x0 and x[0] < x_end - 1e-9
-                 and std::abs(x[0] - x_step) > 1e-9;
-        });
+    wb.yielding = am.facets_where("wall",
+                                  [&](const double* x)
+                                  {
+                                    return x[0] > x0 and x[0] < x_end - 1e-9
+                                           and std::abs(x[0] - x_step) > 1e-9;
+                                  });
   }
   wb.radiation = facets("radiation");
   wb.radiation_beta = 0.5 / (vg.radius + vg.layer); // planar: 1/(2R)
@@ -246,13 +245,11 @@ fsai::voice::Sound fsai::voice::make_sound(MPI_Comm comm, const VoiceScene& s,
   return out;
 }
 //-----------------------------------------------------------------------------
-fsai::voice::VoiceMeasures fsai::voice::analyse_voice(MPI_Comm comm, const VoiceScene& s,
-                                const VoiceTract& tract,
-                                const std::vector<double>& t,
-                                const std::vector<double>& g,
-                                const std::vector<double>& Q,
-                                const std::vector<double>& p_mic,
-                                io::RunSummary& summary)
+fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
+    MPI_Comm comm, const VoiceScene& s, const VoiceTract& tract,
+    const std::vector<double>& t, const std::vector<double>& g,
+    const std::vector<double>& Q, const std::vector<double>& p_mic,
+    io::RunSummary& summary)
 {
   const auto& vp = s.voice;
   const double t0 = vp.stats_from * vp.duration;
@@ -306,8 +303,8 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(MPI_Comm comm, const Voice
       "Hz (closed glottis), {::.0f} Hz (as modelled)",
       cs.cycles, cs.f0_hz, cs.open_quotient, cs.q_peak,
       cs.closes_every_cycle ? "yes" : "no", f0,
-      100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, 100 * periodic_fraction,
-      formants, formants_window, tract.formants, tract.domain_formants);
+      100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, 100 * periodic_fraction, formants,
+      formants_window, tract.formants, tract.domain_formants);
 
   // Spectrum of the sound (Hann window) for the chart
   {

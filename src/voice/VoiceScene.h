@@ -105,10 +105,11 @@ struct VoiceMeasures
 };
 /// The fold's cycle and the sound's analysis over t ≥ stats_from·duration:
 /// summary keys, spectrum.csv, sound.wav
-VoiceMeasures analyse_voice(MPI_Comm comm, const VoiceScene& s, const VoiceTract& tract,
-                   const std::vector<double>& t, const std::vector<double>& g,
-                   const std::vector<double>& Q,
-                   const std::vector<double>& p_mic, io::RunSummary& summary);
+VoiceMeasures
+analyse_voice(MPI_Comm comm, const VoiceScene& s, const VoiceTract& tract,
+              const std::vector<double>& t, const std::vector<double>& g,
+              const std::vector<double>& Q, const std::vector<double>& p_mic,
+              io::RunSummary& summary);
 /// --check-result: throws unless the sound is audible, the fold's f0 in
 /// the male range and the sound's f0 the fold's
 void check_voice(const VoiceScene& s, const VoiceMeasures& m);

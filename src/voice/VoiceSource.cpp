@@ -54,8 +54,9 @@ void fsai::voice::VoiceSourceParameters::validate() const
   fsai::require_positive("--voice.monopole_length", monopole_length);
 }
 //-----------------------------------------------------------------------------
-double fsai::voice::surface_height(
-    const std::vector<std::array<double, 2>>& surface, double x)
+double
+fsai::voice::surface_height(const std::vector<std::array<double, 2>>& surface,
+                            double x)
 {
   double y = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i + 1 < surface.size(); ++i)
@@ -84,8 +85,8 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
   // slit and the gap beside the fold), with the fold's rest height there
   if (_par.glottal_slit)
   {
-    const auto rest = glottis::moved_surface(
-        profile, glottis::RigidMotion(0, 0, {0, 0}));
+    const auto rest
+        = glottis::moved_surface(profile, glottis::RigidMotion(0, 0, {0, 0}));
     const int tdim = am.mesh->topology().dim();
     const std::int32_t nc = am.mesh->topology().index_map(tdim)->size_local();
     const auto x = am.mesh->geometry().x();
@@ -129,8 +130,8 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
     };
     _monopole[0] = _sound.add_volume_source(
         [&](double x, double) { return bump(x, geo.fold_length + l); });
-    _monopole[1]
-        = _sound.add_volume_source([&](double x, double) { return bump(x, -l); });
+    _monopole[1] = _sound.add_volume_source([&](double x, double)
+                                            { return bump(x, -l); });
   }
   // Lighthill's source (A1): transfer in the reference configuration and
   // its taper χ, 1 inside the flow domain, cos² ramps to 0 towards the
