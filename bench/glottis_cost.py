@@ -59,7 +59,7 @@ for ranks in args.ranks:
         summary = os.path.join(run, "summary.json")
         if args.rerun or not os.path.exists(summary):
             cmd = (["mpirun", "-n", str(ranks)] if ranks > 1 else []) + [
-                exe, "--config", preset, "--fe.h_gap", f"{h}e-3", "--fe.h_far", f"{10 * h}e-3",
+                exe, "--config", preset, "--fe.h_gap", f"{h}e-3", "--fe.h_far", f"{10 * h:.4g}e-3",
                 "--duration", str(args.duration), "--write_every", "0", "--output", run]
             print(" ".join(cmd), flush=True)
             subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL)
