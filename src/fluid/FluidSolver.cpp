@@ -104,9 +104,8 @@ void fsai::fluid::FluidSolver::create_spaces(std::shared_ptr<mesh::Mesh> mesh)
   // The mixed P1/P1 space, its collapsed velocity and pressure spaces, the
   // porous indicator's DG0 space, and every field of E8–E20
   const int tdim = mesh->topology().dim();
-  auto mesh_nc = mesh;
   _W = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-      fluid_forms::functionspace_a(tdim, 1), "v_0", mesh_nc));
+      fluid_forms::functionspace_a(tdim, 1), "v_0", mesh));
   {
     auto [V, map] = _W->sub({0})->collapse();
     _V = std::make_shared<fem::FunctionSpace>(std::move(V));
@@ -116,7 +115,7 @@ void fsai::fluid::FluidSolver::create_spaces(std::shared_ptr<mesh::Mesh> mesh)
     _map_p = std::move(mapq);
   }
   _DG0 = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-      fluid_forms::functionspace_a(tdim, 1), "chi", mesh_nc));
+      fluid_forms::functionspace_a(tdim, 1), "chi", mesh));
   auto fn = [](auto V, const std::string& name)
   {
     auto f = std::make_shared<fem::Function<double>>(V);
@@ -145,8 +144,6 @@ void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
   // outlet (E11c)
   const auto& p = _par;
   const int tdim = mesh->topology().dim();
-  const double dt = _dt;
-  auto mesh_nc = mesh;
   auto constant = [&](double v)
   {
     _constants.push_back(std::make_shared<fem::Constant<double>>(v));
@@ -155,7 +152,7 @@ void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
   _a0 = constant(0.0);
   _a1 = constant(0.0);
   _a2 = constant(0.0);
-  _inv_dt = constant(p.tau_dt ? 1.0 / dt : 0.0);
+  _inv_dt = constant(p.tau_dt ? 1.0 / _dt : 0.0);
   _p_in = constant(p.p_in);
   std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
       = {{"rho", constant(p.rho)},
@@ -177,7 +174,7 @@ void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
 
   // Natural boundaries: ds(1) penalty inlet, ds(2) outlet
   const int fdim = tdim - 1;
-  mesh_nc->topology_mutable().create_connectivity(fdim, tdim);
+  mesh->topology_mutable().create_connectivity(fdim, tdim);
   const std::int32_t nf = mesh->topology().index_map(fdim)->size_local();
   std::vector<std::pair<std::int32_t, int>> tagged;
   for (std::int32_t f : bnd.inlet_penalty)
