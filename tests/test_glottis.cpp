@@ -79,6 +79,28 @@ TEST_CASE("Rigid motion: inverse map and derivatives", "[glottis]")
   CHECK(d[0][1] == -1.0);
 }
 
+TEST_CASE("Signed depth inside a polygon (the porous ramp's d, G4)",
+          "[glottis]")
+{
+  // Unit square: depth = distance to the nearest side, positive inside
+  const std::vector<std::array<double, 2>> sq
+      = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  CHECK(polygon_signed_distance(sq, {0.5, 0.25}) == Approx(0.25));
+  CHECK(polygon_signed_distance(sq, {0.9, 0.5}) == Approx(0.1));
+  CHECK(polygon_signed_distance(sq, {1.5, 0.5}) == Approx(-0.5));
+  CHECK(polygon_signed_distance(sq, {2.0, 2.0}) == Approx(-std::sqrt(2.0)));
+  // The fold: the sign is the inside test's, and a point just under the
+  // medial surface (y = g0) is that far outside
+  const GlottisGeometry g;
+  const FoldProfile p(g);
+  for (const std::array<double, 2> X :
+       {std::array<double, 2>{5e-3, 3e-3}, {5e-3, 0.1e-3}, {1e-3, 1e-3}})
+    CHECK((p.signed_depth(X) > 0) == p.contains(X));
+  const double x_mid = g.medial_x;
+  CHECK(p.signed_depth({x_mid, g.rest_gap - 10e-6})
+        == Approx(-10e-6).margin(0.5e-6));
+}
+
 TEST_CASE("2-DOF fold: in-vacuo frequencies and energy-conserving Newmark",
           "[glottis]")
 {

@@ -44,7 +44,10 @@ fsai::glottis::FlowChannel::FlowChannel(MPI_Comm comm,
                                         const FlowGlottisParameters& p,
                                         fluid::FluidParameters fp,
                                         const ale::MeshMotionParameters& ap)
-    : _comm(comm), _profile(profile), _dt(p.dt)
+    : _comm(comm), _profile(profile), _dt(p.dt), _porous_ramp(p.porous_ramp),
+      _chi_floor(fp.sigma_p > 0
+                     ? std::min(1.0, 0.01 * fp.rho / (fp.sigma_p * p.dt))
+                     : 1.0)
 {
   p.validate();
   const auto& g = profile.geometry();
@@ -222,14 +225,32 @@ void fsai::glottis::FlowChannel::set_wall_velocity()
       gw[2 * d + k] = w[2 * d + k];
 }
 //-----------------------------------------------------------------------------
-void fsai::glottis::FlowChannel::mark_porous(const InsideTest& inside)
+void fsai::glottis::FlowChannel::mark_porous(const FoldDepth& depth)
 {
+  // A cell's porous term stops its flow once σ_P χ Δt/ρ ≫ 1 (G4). Switched
+  // cell-wise (δ = 0), or ramped linearly in χ, the last cell of the
+  // throat opens (or the first closes) within one step: σ_P Δt/ρ ≈ 170, so
+  // any χ above 1 % is a wall. That step's pressure impulse is the
+  // one-step spike of the glottal flow at closing and reopening
+  // (bench/glottis_clicks.py). Ramped geometrically, the cell's resistance
+  // grows by the same factor per µm of depth from negligible (σ_P χ Δt/ρ =
+  // 0.01) to σ_P, so the throat opens over the steps the fold takes to
+  // rise by δ.
   auto& chi = _flow->porous_indicator();
   auto c_arr = chi.x()->mutable_array();
   const auto dofmap = chi.function_space()->dofmap();
+  const double ramp = _porous_ramp;
   for (auto c : _candidates)
-    c_arr[dofmap->cell_dofs(c)[0]]
-        = inside(cell_midpoint(*_mesh.mesh, c)) ? 1.0 : 0.0;
+  {
+    const double d = depth(cell_midpoint(*_mesh.mesh, c));
+    double x = d > 0 ? 1.0 : 0.0;
+    if (ramp > 0)
+    {
+      const double s = std::clamp(0.5 + d / ramp, 0.0, 1.0);
+      x = s > 0 ? std::pow(_chi_floor, 1 - s) : 0.0;
+    }
+    c_arr[dofmap->cell_dofs(c)[0]] = x;
+  }
 }
 //-----------------------------------------------------------------------------
 void fsai::glottis::FlowChannel::solve_flow()

@@ -43,8 +43,9 @@ public:
   /// surface
   using SurfaceDisplacement
       = std::function<std::array<double, 2>(const std::array<double, 2>&)>;
-  /// Whether a point (current coordinates) lies inside the moved fold
-  using InsideTest = std::function<bool(const std::array<double, 2>&)>;
+  /// Signed distance of a point (current coordinates) from the moved
+  /// fold's outline, positive inside the fold
+  using FoldDepth = std::function<double(const std::array<double, 2>&)>;
 
   FlowChannel(MPI_Comm comm, const FoldProfile& profile,
               const FlowGlottisParameters& p, fluid::FluidParameters fp,
@@ -66,9 +67,12 @@ public:
   /// After a move: the mesh velocity of the step and the fold wall's
   /// velocity (the moving-wall condition) from it
   void set_wall_velocity();
-  /// χ = 1 in the cells that may turn porous and whose current midpoint is
-  /// inside the moved fold, χ = 0 in the others
-  void mark_porous(const InsideTest& inside);
+  /// The porous indicator (G4) of the cells that may turn porous, by the
+  /// depth d of their current midpoint inside the moved fold: with s = 1/2
+  /// + d/δ clamped to [0, 1] (δ = --closure.porous_ramp), χ = χ_0^(1 − s)
+  /// for s > 0 and 0 for s = 0, χ_0 = 0.01 ρ/(σ_P Δt) (δ = 0: χ = 1
+  /// inside, 0 outside); χ = 0 in the other cells
+  void mark_porous(const FoldDepth& depth);
   /// The flow step to the current mesh, from the state saved at the start
   /// of the time step (repeated by every coupling iteration)
   void solve_flow();
@@ -124,6 +128,8 @@ private:
   MPI_Comm _comm;
   const FoldProfile& _profile;
   double _dt;
+  double _porous_ramp; // δ of mark_porous [m]
+  double _chi_floor;   // χ_0 of mark_porous
   mesh::MeshData _mesh;
   std::vector<std::int32_t> _fold_facets, _inlet_facets;
   /// Fold facets upstream of the glottal section x = medial_x (reference

@@ -43,6 +43,9 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
         "2 fe.grading before the fold, coarser than h_far [m]");
   p.add("closure.g_min", g_min,
         "closest approach of the fluid boundary to the axis [m]");
+  p.add("closure.porous_ramp", porous_ramp,
+        "width over which a cell's porous indicator rises from 0 to 1 with "
+        "the depth of its midpoint inside the fold (0: a switch) [m]");
   p.add_choice("closure.gap_motion", gap_motion, {"algebraic", "elastic"},
                "mesh motion between the medial surface and the axis");
   p.add("closure.gap_columns", gap_columns,
@@ -70,6 +73,7 @@ void fsai::glottis::FlowGlottisParameters::validate() const
   fsai::require_positive("--fe.jet_height", sizes.jet_height);
   fsai::require(sizes.h_inlet >= 0, "--fe.h_inlet", ">= 0", sizes.h_inlet);
   fsai::require_positive("--closure.g_min", g_min);
+  fsai::require(porous_ramp >= 0, "--closure.porous_ramp", ">= 0", porous_ramp);
   fsai::require(gap_columns >= 0, "--closure.gap_columns", ">= 0", gap_columns);
 }
 
@@ -211,7 +215,7 @@ fsai::glottis::FlowGlottis::evaluate(double t, const std::array<double, 2>& q,
   _channel.set_wall_velocity();
   // 2. porous region: the cells inside the moved fold; flow
   _channel.mark_porous([&](const std::array<double, 2>& x)
-                       { return _profile.contains(m.reference_of(x)); });
+                       { return _profile.signed_depth(m.reference_of(x)); });
   _channel.solve_flow();
   // 3. generalised forces of the fluid's nodal forces by the tapered
   //    virtual displacements

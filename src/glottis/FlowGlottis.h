@@ -54,6 +54,10 @@ struct FlowGlottisParameters
   /// whole to mesh::glottis_channel
   mesh::ChannelSizes sizes;
   double g_min = 0.02e-3; ///< closest approach of the fluid boundary [m]
+  /// Width δ over which the porous indicator χ of a cell rises from 0 to 1
+  /// with the depth of its midpoint inside the moved fold (G4; 0: χ
+  /// switches from 0 to 1 as the midpoint enters the fold) [m]
+  double porous_ramp = 0.0;
   /// Mesh motion of the gap between the medial surface and the axis:
   /// "algebraic" (each node keeps its height fraction y/y_s under the
   /// surface point above it; the rest of the mesh by the elastic

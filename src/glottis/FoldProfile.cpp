@@ -5,6 +5,7 @@
 #include <common/Parameters.h>
 #include <common/errors.h>
 #include <limits>
+#include <utility>
 
 void fsai::glottis::GlottisGeometry::bind(fsai::common::Parameters& p)
 {
@@ -209,6 +210,12 @@ bool fsai::glottis::FoldProfile::contains(const std::array<double, 2>& X) const
 }
 
 double
+fsai::glottis::FoldProfile::signed_depth(const std::array<double, 2>& X) const
+{
+  return polygon_signed_distance(_pts, X);
+}
+
+double
 fsai::glottis::FoldProfile::arc_length(const std::array<double, 2>& X) const
 {
   // Of the nearest point of the polyline
@@ -231,11 +238,15 @@ fsai::glottis::FoldProfile::arc_length(const std::array<double, 2>& X) const
   return s;
 }
 
-bool fsai::glottis::polygon_contains(
-    const std::vector<std::array<double, 2>>& p, const std::array<double, 2>& X)
+namespace
 {
-  // Even–odd rule
+// Even–odd inside test of X against the closed polygon p and, if asked,
+// the squared distance from X to p's outline
+std::pair<bool, double> locate(const std::vector<std::array<double, 2>>& p,
+                               const std::array<double, 2>& X, bool distance)
+{
   bool in = false;
+  double d2 = std::numeric_limits<double>::infinity();
   const std::size_t n = p.size();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++)
   {
@@ -246,8 +257,32 @@ bool fsai::glottis::polygon_contains(
     {
       in = !in;
     }
+    if (!distance)
+      continue;
+    const double tx = b[0] - a[0], ty = b[1] - a[1];
+    const double l2 = tx * tx + ty * ty;
+    const double f
+        = l2 > 0 ? std::clamp(((X[0] - a[0]) * tx + (X[1] - a[1]) * ty) / l2,
+                              0.0, 1.0)
+                 : 0.0;
+    const double dx = a[0] + f * tx - X[0], dy = a[1] + f * ty - X[1];
+    d2 = std::min(d2, dx * dx + dy * dy);
   }
-  return in;
+  return {in, d2};
+}
+} // namespace
+
+bool fsai::glottis::polygon_contains(
+    const std::vector<std::array<double, 2>>& p, const std::array<double, 2>& X)
+{
+  return locate(p, X, false).first;
+}
+
+double fsai::glottis::polygon_signed_distance(
+    const std::vector<std::array<double, 2>>& p, const std::array<double, 2>& X)
+{
+  const auto [in, d2] = locate(p, X, true);
+  return in ? std::sqrt(d2) : -std::sqrt(d2);
 }
 
 std::array<double, 2>

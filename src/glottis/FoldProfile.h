@@ -98,6 +98,9 @@ public:
   MassProperties mass_properties(double density) const;
   /// True if the reference point lies inside the fold
   bool contains(const std::array<double, 2>& X) const;
+  /// Distance of the reference point from the fold's outline, positive
+  /// inside the fold, negative outside
+  double signed_depth(const std::array<double, 2>& X) const;
   /// Arc length from the inferior attachment along the surface to the
   /// point of the surface nearest to X [m]
   double arc_length(const std::array<double, 2>& X) const;
@@ -115,6 +118,11 @@ private:
 /// first; even–odd rule)
 bool polygon_contains(const std::vector<std::array<double, 2>>& p,
                       const std::array<double, 2>& X);
+
+/// Distance of X from the closed polygon p's outline, positive inside
+/// (even–odd rule), negative outside
+double polygon_signed_distance(const std::vector<std::array<double, 2>>& p,
+                               const std::array<double, 2>& X);
 
 /// Rigid motion of the profile by (h, φ) about the elastic axis
 struct RigidMotion
