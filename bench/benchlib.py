@@ -4,6 +4,17 @@ import os
 
 import numpy as np
 
+# Where the bench scripts write their runs, tables and charts (not in git)
+RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
+# mpirun as root (the machines here run as root)
+MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def results_dir():
+    """RESULTS, created if missing"""
+    os.makedirs(RESULTS, exist_ok=True)
+    return RESULTS
+
 
 def read_float_rows(path):
     """A CSV file of numbers (a series.csv, a summary table) as a list of

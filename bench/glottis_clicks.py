@@ -28,7 +28,7 @@ import subprocess
 
 import numpy as np
 
-from benchlib import print_markdown_table, read_float_rows, write_rows
+from benchlib import MPI_ENV, results_dir, print_markdown_table, read_float_rows, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..")
@@ -39,9 +39,8 @@ ap.add_argument("--ranks", type=int, default=1)
 ap.add_argument("--ramps", type=float, nargs="+", default=[0.0, 2e-5])
 ap.add_argument("--rerun", action="store_true")
 args = ap.parse_args()
-out = os.path.join(here, "results")
-os.makedirs(out, exist_ok=True)
-env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+out = results_dir()
+env = MPI_ENV
 exe = os.path.join(args.build, "demos", "fsai_glottis")
 T_FROM = 0.02  # [s] after the start-up
 

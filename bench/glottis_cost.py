@@ -32,7 +32,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from benchlib import print_markdown_table, write_rows
+from benchlib import MPI_ENV, results_dir, print_markdown_table, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..")
@@ -43,9 +43,8 @@ ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
 ap.add_argument("--levels", type=float, nargs="+", default=[0.07, 0.05, 0.035, 0.025, 0.0175])
 ap.add_argument("--rerun", action="store_true")
 args = ap.parse_args()
-out = os.path.join(here, "results")
-os.makedirs(out, exist_ok=True)
-env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+out = results_dir()
+env = MPI_ENV
 exe = os.path.join(args.build, "demos", "fsai_glottis")
 preset = os.path.join(root, "demos", "glottis", "closing_cycle.toml")
 PARTS = {"solve": ["fluid: solve"], "assembly": ["fluid: assemble"],

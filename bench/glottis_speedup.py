@@ -33,7 +33,7 @@ import subprocess
 
 import numpy as np
 
-from benchlib import glottal_cycles, print_markdown_table, read_float_rows, write_rows
+from benchlib import MPI_ENV, results_dir, glottal_cycles, print_markdown_table, read_float_rows, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..")
@@ -53,9 +53,8 @@ ap.add_argument("--duration", type=float, default=0.1)
 ap.add_argument("--window", type=float, nargs=2, default=[0.05, 0.1])
 ap.add_argument("--rerun", action="store_true")
 args = ap.parse_args()
-out = os.path.join(here, "results")
-os.makedirs(out, exist_ok=True)
-env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+out = results_dir()
+env = MPI_ENV
 exe = os.path.join(args.build, "demos", "fsai_glottis")
 preset = os.path.join(root, "demos", "glottis", "closing_cycle.toml")
 

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""The voice scene (fsai_demo, 2 MPI ranks): speed vs accuracy over three
+"""The voice scene (fsai_demo, 2 MPI ranks): the default voice (the converged
+closing cycle's flow), and on the glottis scene's own flow speed vs accuracy over three
 resolutions of flow mesh, acoustic mesh and time step, and the comparison
 runs — vowels a and i and the tract replaced by a short
 straight tube (default and coarse resolution), the variants of the
@@ -44,27 +45,36 @@ out = os.path.join(here, "results")
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
 
-coarse = ["--fe.h_far", "1e-3", "--fe.h_gap", "0.1e-3", "--voice.h", "0.008", "--dt", "4e-5"]
-medium = ["--fe.h_far", "0.7e-3", "--fe.h_gap", "0.07e-3", "--voice.h", "0.006", "--dt", "3e-5"]
+# The default voice's flow is the converged closing cycle's (0.35/0.035 mm
+# mesh, the preset's fold, quadrature degree 2, porous ramp: run
+# "u_converged"). The study below was made on the glottis scene's own
+# flow: its fold and porous switch (old_fold), at three resolutions
+# (coarse, medium, and "default" = the scene's 0.5/0.05 mm mesh)
+old_fold = ["--vf.f2", "160", "--vf.zeta1", "0.05", "--vf.zeta2", "0.05",
+            "--fluid.quadrature_degree", "4", "--closure.porous_ramp", "0"]
+coarse = ["--fe.h_far", "1e-3", "--fe.h_gap", "0.1e-3", "--voice.h", "0.008", "--dt", "4e-5"] + old_fold
+medium = ["--fe.h_far", "0.7e-3", "--fe.h_gap", "0.07e-3", "--voice.h", "0.006", "--dt", "3e-5"] + old_fold
+scene = ["--fe.h_far", "0.5e-3", "--fe.h_gap", "0.05e-3"] + old_fold
 rigid = ["--voice.yielding_walls=false", "--voice.subglottal", "hard"]
 # The sound's Newmark step without numerical damping (γ = ½, the default
 #): the high-frequency ringing it keeps
 trapezoidal = ["--acoustics.newmark_gamma", "0.5", "--acoustics.newmark_beta", "0.25"]
 runs = {
+    "u_converged": [],
     "u_coarse": coarse,
     "u_medium": medium,
-    "u_default": [],
+    "u_default": scene,
     "u_medium_trapezoidal": medium + trapezoidal,
-    "u_default_trapezoidal": trapezoidal,
-    "a_default": ["--vowel", "a"],
-    "i_default": ["--vowel", "i"],
-    "tube_default": ["--tract", "tube"],
+    "u_default_trapezoidal": scene + trapezoidal,
+    "a_default": scene + ["--vowel", "a"],
+    "i_default": scene + ["--vowel", "i"],
+    "tube_default": scene + ["--tract", "tube"],
     # The acoustic glottis and the monopole pair (both on by default): each
     # alone, and neither (Lighthill's source and the rest slit: the default
     #)
-    "u_default_lighthill_only": ["--voice.monopole=false", "--voice.glottal_slit=false"],
-    "u_default_slit_only": ["--voice.monopole=false"],
-    "u_default_monopole_only": ["--voice.glottal_slit=false"],
+    "u_default_lighthill_only": scene + ["--voice.monopole=false", "--voice.glottal_slit=false"],
+    "u_default_slit_only": scene + ["--voice.monopole=false"],
+    "u_default_monopole_only": scene + ["--voice.glottal_slit=false"],
     "a_coarse": coarse + ["--vowel", "a"],
     "i_coarse": coarse + ["--vowel", "i"],
     "tube_coarse": coarse + ["--tract", "tube"],
@@ -74,7 +84,7 @@ runs = {
     # subglottal end) at all three resolutions, and the hard end alone
     "u_coarse_rigid": coarse + rigid,
     "u_medium_rigid": medium + rigid,
-    "u_default_rigid": rigid,
+    "u_default_rigid": scene + rigid,
     "u_hardend_coarse": coarse + ["--voice.subglottal", "hard"],
 }
 only = [s for s in args.only.split(",") if s]
