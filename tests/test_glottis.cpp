@@ -95,9 +95,9 @@ TEST_CASE("Signed depth inside a polygon (the porous ramp's d, G4)",
   const FoldProfile p(g);
   for (const std::array<double, 2> X :
        {std::array<double, 2>{5e-3, 3e-3}, {5e-3, 0.1e-3}, {1e-3, 1e-3}})
-    CHECK((p.signed_depth(X) > 0) == p.contains(X));
+    CHECK((polygon_signed_distance(p.points(), X) > 0) == p.contains(X));
   const double x_mid = g.medial_x;
-  CHECK(p.signed_depth({x_mid, g.rest_gap - 10e-6})
+  CHECK(polygon_signed_distance(p.points(), {x_mid, g.rest_gap - 10e-6})
         == Approx(-10e-6).margin(0.5e-6));
 }
 

@@ -83,8 +83,7 @@ void fsai::glottis::ElasticFlowGlottis::move_boundary(
   _channel.set_wall_velocity();
   // Ω^P_t: inside the deformed fold (the polyline ends on the wall, y = H:
   // closed along it)
-  _channel.mark_porous([&](const std::array<double, 2>& m)
-                       { return polygon_signed_distance(x, m); });
+  _channel.mark_porous(x, [](const std::array<double, 2>& m) { return m; });
 }
 //-----------------------------------------------------------------------------
 std::vector<double> fsai::glottis::ElasticFlowGlottis::surface_pressure()

@@ -225,7 +225,9 @@ void fsai::glottis::FlowChannel::set_wall_velocity()
       gw[2 * d + k] = w[2 * d + k];
 }
 //-----------------------------------------------------------------------------
-void fsai::glottis::FlowChannel::mark_porous(const FoldDepth& depth)
+void fsai::glottis::FlowChannel::mark_porous(
+    const std::vector<std::array<double, 2>>& outline,
+    const ToOutline& to_outline)
 {
   // A cell's porous term stops its flow once σ_P χ Δt/ρ ≫ 1 (G4). Switched
   // cell-wise (δ = 0), or ramped linearly in χ, the last cell of the
@@ -242,13 +244,16 @@ void fsai::glottis::FlowChannel::mark_porous(const FoldDepth& depth)
   const double ramp = _porous_ramp;
   for (auto c : _candidates)
   {
-    const double d = depth(cell_midpoint(*_mesh.mesh, c));
-    double x = d > 0 ? 1.0 : 0.0;
+    const auto X = to_outline(cell_midpoint(*_mesh.mesh, c));
+    double x = 0;
     if (ramp > 0)
     {
-      const double s = std::clamp(0.5 + d / ramp, 0.0, 1.0);
+      const double s = std::clamp(
+          0.5 + polygon_signed_distance(outline, X) / ramp, 0.0, 1.0);
       x = s > 0 ? std::pow(_chi_floor, 1 - s) : 0.0;
     }
+    else
+      x = polygon_contains(outline, X) ? 1.0 : 0.0;
     c_arr[dofmap->cell_dofs(c)[0]] = x;
   }
 }

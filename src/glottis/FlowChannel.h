@@ -43,9 +43,9 @@ public:
   /// surface
   using SurfaceDisplacement
       = std::function<std::array<double, 2>(const std::array<double, 2>&)>;
-  /// Signed distance of a point (current coordinates) from the moved
-  /// fold's outline, positive inside the fold
-  using FoldDepth = std::function<double(const std::array<double, 2>&)>;
+  /// Map of a current point to the coordinates of the fold's outline
+  using ToOutline
+      = std::function<std::array<double, 2>(const std::array<double, 2>&)>;
 
   FlowChannel(MPI_Comm comm, const FoldProfile& profile,
               const FlowGlottisParameters& p, fluid::FluidParameters fp,
@@ -67,12 +67,15 @@ public:
   /// After a move: the mesh velocity of the step and the fold wall's
   /// velocity (the moving-wall condition) from it
   void set_wall_velocity();
-  /// The porous indicator (G4) of the cells that may turn porous, by the
-  /// depth d of their current midpoint inside the moved fold: with s = 1/2
-  /// + d/δ clamped to [0, 1] (δ = --closure.porous_ramp), χ = χ_0^(1 − s)
-  /// for s > 0 and 0 for s = 0, χ_0 = 0.01 ρ/(σ_P Δt) (δ = 0: χ = 1
-  /// inside, 0 outside); χ = 0 in the other cells
-  void mark_porous(const FoldDepth& depth);
+  /// The porous indicator (G4) of the cells that may turn porous, by
+  /// where their current midpoint lies against the moved fold, the closed
+  /// polygon `outline` (to_outline maps a current point to its
+  /// coordinates). δ = --closure.porous_ramp = 0: χ = 1 inside, 0 outside;
+  /// δ > 0: by the depth d inside it, s = 1/2 + d/δ clamped to [0, 1],
+  /// χ = χ_0^(1 − s) for s > 0 and 0 for s = 0, χ_0 = 0.01 ρ/(σ_P Δt).
+  /// χ = 0 in the other cells
+  void mark_porous(const std::vector<std::array<double, 2>>& outline,
+                   const ToOutline& to_outline);
   /// The flow step to the current mesh, from the state saved at the start
   /// of the time step (repeated by every coupling iteration)
   void solve_flow();

@@ -214,8 +214,8 @@ fsai::glottis::FlowGlottis::evaluate(double t, const std::array<double, 2>& q,
   move_mesh(t, q);
   _channel.set_wall_velocity();
   // 2. porous region: the cells inside the moved fold; flow
-  _channel.mark_porous([&](const std::array<double, 2>& x)
-                       { return _profile.signed_depth(m.reference_of(x)); });
+  _channel.mark_porous(_profile.points(), [&](const std::array<double, 2>& x)
+                       { return m.reference_of(x); });
   _channel.solve_flow();
   // 3. generalised forces of the fluid's nodal forces by the tapered
   //    virtual displacements

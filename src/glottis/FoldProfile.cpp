@@ -210,12 +210,6 @@ bool fsai::glottis::FoldProfile::contains(const std::array<double, 2>& X) const
 }
 
 double
-fsai::glottis::FoldProfile::signed_depth(const std::array<double, 2>& X) const
-{
-  return polygon_signed_distance(_pts, X);
-}
-
-double
 fsai::glottis::FoldProfile::arc_length(const std::array<double, 2>& X) const
 {
   // Of the nearest point of the polyline

@@ -98,9 +98,6 @@ public:
   MassProperties mass_properties(double density) const;
   /// True if the reference point lies inside the fold
   bool contains(const std::array<double, 2>& X) const;
-  /// Distance of the reference point from the fold's outline, positive
-  /// inside the fold, negative outside
-  double signed_depth(const std::array<double, 2>& X) const;
   /// Arc length from the inferior attachment along the surface to the
   /// point of the surface nearest to X [m]
   double arc_length(const std::array<double, 2>& X) const;

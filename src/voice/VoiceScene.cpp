@@ -127,18 +127,12 @@ void fsai::voice::VoiceScene::apply_quick(const std::vector<std::string>& args)
   // sound's f0 needs two periods in the window)
   voice.duration = 0.04;
   voice.dt = 5e-5;
-  glottis.fe.sizes.h_far = 1e-3;
-  glottis.fe.sizes.h_gap = 0.1e-3;
   // On this mesh and step the converged flow's fold (ζ 0.02) with the
   // porous ramp leaves coupling steps unconverged and serial and 2-rank
-  // runs part ways: the quick look keeps the glottis scene's own fold,
-  // quadrature and porous switch
-  const glottis::FlowGlottisSetup scene;
-  glottis.fold.f2 = scene.fold.f2;
-  glottis.fold.zeta1 = scene.fold.zeta1;
-  glottis.fold.zeta2 = scene.fold.zeta2;
-  glottis.fluid.quadrature_degree = scene.fluid.quadrature_degree;
-  glottis.fe.porous_ramp = scene.fe.porous_ramp;
+  // runs part ways: the quick look is on the glottis scene's own flow
+  glottis = glottis::FlowGlottisSetup();
+  glottis.fe.sizes.h_far = 1e-3;
+  glottis.fe.sizes.h_gap = 0.1e-3;
   domain.h = 0.008;
   glottis.fold.h0 = 0.15e-3;
   voice.stats_from = 0.4;
