@@ -7,7 +7,9 @@
 # final checkpoint (fold u, v, a by mesh node and edge; flow, mesh motion,
 # surface pressures) byte for byte, and the XDMF files' times (those
 # written after the checkpoint replaced, not repeated). A 2-rank checkpoint
-# of the FE scene continues on 1 rank within 1e-6 of the serial run.
+# of the FE scene continues on 1 rank within 1e-6 of the serial run. The
+# Bernoulli case (a body-cover fold) also records the fold's surface
+# (fold_surface.csv, cut back to the checkpoint like series.csv).
 # usage: restart_glottis_elastic.sh FSAI_GLOTTIS MPIEXEC
 demo=$1
 mpiexec=${2:-mpirun}
@@ -15,7 +17,7 @@ source "$(dirname "$0")/common.sh"
 
 # name | steps | kill at | options
 cases=(
-  "bernoulli|500|250|--flow bernoulli --fold elastic --duration 0.01 --checkpoint-every 100 --write_every 30"
+  "bernoulli|500|250|--flow bernoulli --fold elastic --elastic.layers 2 --duration 0.01 --checkpoint-every 100 --write_every 30 --surface_every 10"
   "fe|80|50|--flow fe --fold elastic --duration 0.0016 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --coupling.method iqn-ils --checkpoint-every 20 --write_every 15"
 )
 for case in "${cases[@]}"; do
@@ -27,7 +29,9 @@ for case in "${cases[@]}"; do
   rows=$(($(wc -l <"$work/cut_$name/series.csv") - 1))
   [ "$status" -ne 0 ] && [ "$rows" -eq "$kill" ] || { echo "FAIL $name: the run was not killed at step $kill ($rows rows)"; fail=1; }
   "$demo" "${args[@]}" --restart "$work/cut_$name" >/dev/null 2>&1 || { echo "FAIL $name: restart"; fail=1; }
-  for f in series.csv coupling.csv "checkpoint_$steps.r0.bin"; do
+  files=(series.csv coupling.csv "checkpoint_$steps.r0.bin")
+  [ "$name" = bernoulli ] && files+=(fold_surface.csv modes_surface.csv)
+  for f in "${files[@]}"; do
     if cmp -s "$work/full_$name/$f" "$work/cut_$name/$f"; then
       echo "ok   $name: $f identical ($(wc -c <"$work/full_$name/$f") bytes)"
     else

@@ -22,6 +22,7 @@
 #include <common/Parameters.h>
 #include <common/Runtime.h>
 #include <common/timer.h>
+#include <glottis/FoldSurfaceRecord.h>
 #include <glottis/GlottisScene.h>
 #include <io/RunLoop.h>
 #include <io/RunSummary.h>
@@ -81,6 +82,11 @@ int main(int argc, char* argv[])
         fold_xdmf = writer("fold.xdmf", model->fold_fields());
         if (loop.restarting())
           model->restore(loop.checkpoint(), loop.fields());
+        std::unique_ptr<fsai::glottis::FoldSurfaceRecord> surface;
+        if (sp.surface_every > 0)
+          surface = std::make_unique<fsai::glottis::FoldSurfaceRecord>(
+              *model->elastic_fold(), sp.output, sp.surface_every, 6,
+              loop.first_step());
 
         // 3. Time loop (the series' kept rows rebuild the statistics)
         const long n = std::lround(sp.duration / sp.dt);
@@ -113,6 +119,8 @@ int main(int argc, char* argv[])
             flow_xdmf->write(s.t);
           if (fold_xdmf and k % sp.write_every == 0)
             fold_xdmf->write(s.t);
+          if (surface)
+            surface->step(k, s.t);
           loop.row({s.t, s.gap, s.Q, s.h, s.phi, s.lift, s.drag, s.moment,
                     s.contact_force, s.penetration, double(s.gap <= 0),
                     double(s.iterations), s.Q_inlet});

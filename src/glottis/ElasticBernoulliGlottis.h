@@ -56,6 +56,7 @@ public:
   std::vector<io::TimeSeriesWriter::Field> fold_fields() override;
   void describe(io::RunSummary& summary) override;
   ElasticFold& fold() { return _fold; }
+  ElasticFold* elastic_fold() override { return &_fold; }
 
 private:
   /// Flow and pressure along the moved surface x at time t (p_sub ramped)

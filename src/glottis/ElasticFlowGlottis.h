@@ -78,6 +78,7 @@ public:
   std::vector<io::TimeSeriesWriter::Field> fold_fields() override;
   void describe(io::RunSummary& summary) override;
   ElasticFold& fold() { return _fold; }
+  ElasticFold* elastic_fold() override { return &_fold; }
   /// Pressure at the fold's ordered surface points (the fold's load, traction
   /// −p n) of the last evaluation [Pa]
   const std::vector<double>& surface_load() const { return _p; }

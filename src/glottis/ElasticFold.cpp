@@ -1,5 +1,6 @@
 // Copyright (C) 2026 fsai developers
 #include "ElasticFold.h"
+#include <algorithm>
 #include <cmath>
 #include <common/Parameters.h>
 #include <common/Runtime.h>
@@ -8,6 +9,7 @@
 #include <dolfinx/fem/utils.h>
 #include <limits>
 #include <mesh/glottis_channel.h>
+#include <mesh/vocal_fold.h>
 #include <numeric>
 
 //-----------------------------------------------------------------------------
@@ -21,6 +23,17 @@ void fsai::glottis::ElasticFoldParameters::bind(fsai::common::Parameters& p)
   p.add("elastic.E", material.E, "--fold elastic: Young's modulus [Pa]");
   p.add("elastic.nu", material.nu, "--fold elastic: Poisson's ratio");
   p.add("elastic.rho", material.rho, "--fold elastic: density [kg/m^3]");
+  p.add("elastic.layers", layers,
+        "--fold elastic: 1 (homogeneous) or 2 (body and cover, "
+        "--elastic.cover*)");
+  p.add("elastic.cover_thickness", cover,
+        "--fold elastic --elastic.layers 2: cover thickness [m]");
+  p.add("elastic.cover.E", cover_material.E,
+        "--elastic.layers 2: Young's modulus of the cover [Pa]");
+  p.add("elastic.cover.nu", cover_material.nu,
+        "--elastic.layers 2: Poisson's ratio of the cover");
+  p.add("elastic.cover.rho", cover_material.rho,
+        "--elastic.layers 2: density of the cover [kg/m^3]");
   p.add("elastic.zeta", zeta,
         "--fold elastic: damping ratio at elastic.f_zeta_low and _high "
         "(Rayleigh damping)");
@@ -29,6 +42,11 @@ void fsai::glottis::ElasticFoldParameters::bind(fsai::common::Parameters& p)
         "damping) [Hz]");
   p.add("elastic.f_zeta_high", f_zeta_high,
         "--fold elastic: upper frequency of zeta [Hz]");
+  p.add_choice("elastic.contact", contact, {"penalty", "hertz"},
+               "--fold elastic: contact with the axis, penalty "
+               "(--elastic.contact_factor) or hertz (F_H = k_H delta^1.5 (1 + "
+               "b_H d(delta)/dt), --contact.*, at the lowest surface point's "
+               "osculating radius)");
   p.add("elastic.contact_factor", contact_factor,
         "--fold elastic: contact penalty k_c = factor * E / h_surface");
   p.add("elastic.clamped_ends", clamped_ends,
@@ -48,11 +66,18 @@ void fsai::glottis::ElasticFoldParameters::validate() const
   fsai::require(h_far >= h_surface, "--elastic.h_far", ">= --elastic.h_surface",
                 h_far);
   material.validate("--elastic");
+  fsai::require(layers == 1 or layers == 2, "--elastic.layers", "1 or 2",
+                layers);
+  fsai::require(cover >= h_surface, "--elastic.cover_thickness",
+                ">= --elastic.h_surface (at least one layer of cells)", cover);
+  cover_material.validate("--elastic.cover");
   fsai::require(zeta >= 0 and zeta < 1, "--elastic.zeta", "in [0, 1)", zeta);
   fsai::require_positive("--elastic.f_zeta_high", f_zeta_high);
   fsai::require(f_zeta_low >= 0 and f_zeta_low < f_zeta_high,
                 "--elastic.f_zeta_low", "in [0, f_zeta_high)", f_zeta_low);
   fsai::require_positive("--elastic.contact_factor", contact_factor);
+  fsai::require(contact == "penalty" or contact == "hertz", "--elastic.contact",
+                "penalty or hertz", contact);
   fsai::require(coupling == "auto" or coupling == "explicit"
                     or coupling == "implicit",
                 "--elastic.coupling", "auto, explicit or implicit", coupling);
@@ -76,7 +101,7 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
                                         const ElasticFoldParameters& p,
                                         const ContactParameters& contact,
                                         double dt)
-    : _comm(comm), _profile(profile)
+    : _comm(comm), _profile(profile), _contact(contact)
 {
   p.validate();
   _mesh = mesh::glottis_channel_and_fold(
@@ -102,8 +127,26 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   _solver = std::make_unique<structure::ElasticSolver>(
       _mesh.mesh, _mesh.facet_tags->find(_mesh.facet_tag("attachment")), fold,
       sp, dt);
-  _solver->set_contact(p.contact_factor * p.material.E / p.h_surface,
-                       contact.b_H, 0.0);
+  if (p.layers == 2)
+  {
+    // Thinner than the fold (≈ 3 mm deep at the medial surface), so the
+    // cells within `cover` of the profile are the cover
+    _cover = mesh::cells_near_curve(*_mesh.mesh, profile.points(), p.cover);
+    _solver->set_material(_cover, p.cover_material);
+  }
+  if (p.contact == "hertz")
+  {
+    // The osculating radius is resolved down to the surface's mesh size; a
+    // face flatter than the medial surface is long meets the axis as a
+    // flat punch, beyond Hertz's law: r is held within [h/2, T_m]
+    _r_min = 0.5 * p.h_surface;
+    _r_max = profile.geometry().medial_thickness;
+    _solver->set_contact(0.0, contact.b_H, 0.0);
+    _solver->set_contact_update([this](int it) { update_hertz(it); });
+  }
+  else
+    _solver->set_contact(p.contact_factor * p.material.E / p.h_surface,
+                         contact.b_H, 0.0);
 
   // Owned surface dofs, ordered along the profile polyline by arc length
   const auto V = _solver->space();
@@ -222,6 +265,20 @@ fsai::glottis::ElasticFold::moved_surface(std::span<const double> owned) const
   return x;
 }
 //-----------------------------------------------------------------------------
+std::vector<std::array<double, 2>> fsai::glottis::ElasticFold::surface_values(
+    const dolfinx::fem::Function<double>& f) const
+{
+  const auto u = f.x()->array();
+  std::vector<double> owned;
+  owned.reserve(2 * _owned.size());
+  for (auto d : _owned)
+    owned.insert(owned.end(), {u[2 * d], u[2 * d + 1]});
+  auto x = moved_surface(owned);
+  for (std::size_t k = 0; k < x.size(); ++k)
+    x[k] = {x[k][0] - _X[k][0], x[k][1] - _X[k][1]};
+  return x;
+}
+//-----------------------------------------------------------------------------
 void fsai::glottis::ElasticFold::set_pressure(std::span<const double> p)
 {
   auto& T = _solver->traction();
@@ -234,6 +291,66 @@ void fsai::glottis::ElasticFold::set_pressure(std::span<const double> p)
     t[2 * _owned[i] + 1] = -p[k] * _n[k][1];
   }
   T.x()->scatter_fwd();
+}
+//-----------------------------------------------------------------------------
+namespace
+{
+// Newton iterations of a step whose iterate sets the Hertz stiffness
+constexpr int hertz_updates = 4;
+} // namespace
+
+void fsai::glottis::ElasticFold::update_hertz(int iteration)
+{
+  // G5 for the elastic fold: the lowest surface point x_max of the current
+  // iterate has crossed the axis by δ; F_H = k_H(r) δ^{3/2} (the force on
+  // the whole depth L_g) is spread over the overlapping surface as the
+  // pressure k δ(X) (1 + b_H δ̇(X)), k = F_H / (L_g ∫ δ dS), so that its
+  // undamped integral is F_H. k follows the iterate for the first
+  // iterations of a step, then stays: updated at every iteration it kept
+  // Newton from converging once in 0.2 s at 1.2 kPa (a surface point
+  // entering the overlap jumps ∫ δ dS)
+  if (iteration > hertz_updates)
+    return;
+  const auto x = moved_surface(surface_displacement());
+  const std::size_t n = x.size();
+  std::size_t k = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    if (x[i][1] < x[k][1])
+      k = i;
+  _hertz = HertzState{};
+  _hertz.penetration = std::max(0.0, -x[k][1]);
+  if (_hertz.penetration == 0)
+  {
+    _solver->set_contact(0.0, _contact.b_H, 0.0);
+    return;
+  }
+  // The contact line: the points below the axis on either side of x_max;
+  // the osculating circle through x_max and the second points beyond it
+  // (outside the overlap, which the contact pressure flattens)
+  std::size_t a = k, b = k;
+  while (a > 0 and x[a - 1][1] < 0)
+    --a;
+  while (b + 1 < n and x[b + 1][1] < 0)
+    ++b;
+  _hertz.line = {_profile.arc_length(_X[a]), _profile.arc_length(_X[b])};
+  const auto& p = x[a >= 2 ? a - 2 : 0];
+  const auto& q = x[k];
+  const auto& r = x[std::min(n - 1, b + 2)];
+  const double lpq = std::hypot(q[0] - p[0], q[1] - p[1]),
+               lqr = std::hypot(r[0] - q[0], r[1] - q[1]),
+               lpr = std::hypot(r[0] - p[0], r[1] - p[1]);
+  const double area2
+      = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+  // Circumradius |pq||qr||pr| / (2 |(q − p) × (r − p)|); collinear: flat
+  const double radius
+      = std::abs(area2) > 0 ? lpq * lqr * lpr / (2 * std::abs(area2)) : _r_max;
+  _hertz.radius = std::clamp(radius, _r_min, _r_max);
+  _hertz.force = hertz_stiffness(_contact, _hertz.radius)
+                 * std::pow(_hertz.penetration, 1.5);
+  const double overlap = _solver->contact_overlap();
+  const double depth = _profile.geometry().depth;
+  _solver->set_contact(overlap > 0 ? _hertz.force / (depth * overlap) : 0.0,
+                       _contact.b_H, 0.0);
 }
 //-----------------------------------------------------------------------------
 double fsai::glottis::ElasticFold::contact_force() const

@@ -43,6 +43,12 @@ struct ElasticFoldParameters
   double h_surface = 0.2e-3; ///< mesh size on the fold surface [m]
   double h_far = 1e-3;       ///< mesh size away from it [m]
   structure::Material material{8e3, 0.4, 1000.0};
+  /// 1: homogeneous; 2: body–cover, the cells whose midpoint lies within
+  /// `cover` of the free surface (the profile) are of `cover_material`,
+  /// the rest (the body) of `material` (as `fsai_modal --layers 2`)
+  int layers = 1;
+  double cover = 1e-3; ///< cover thickness [m]
+  structure::Material cover_material{2e3, 0.4, 1000.0};
   /// Rayleigh damping D = ε1 M + ε2 K with the damping ratio ζ at both
   /// f_zeta_low and f_zeta_high (ε1 = 2ζ ω_l ω_h/(ω_l + ω_h), ε2 = 2ζ/(ω_l
   /// + ω_h)): about ζ between them, more above (the noise of impacts).
@@ -50,6 +56,9 @@ struct ElasticFoldParameters
   double zeta = 0.01;
   double f_zeta_low = 0;    ///< [Hz]
   double f_zeta_high = 100; ///< [Hz]
+  /// Contact with the axis: "penalty" (k_c below) or "hertz" (G5 for the
+  /// elastic fold: ElasticFold::hertz())
+  std::string contact = "penalty";
   /// Contact penalty k_c = contact_factor · E / h_surface [Pa/m]: the
   /// penetration under a contact pressure p is p h_surface / (factor E),
   /// i.e. a fraction 1/factor of what the first cell's own stiffness
@@ -90,6 +99,18 @@ struct ElasticFoldParameters
 coupling::CouplingParameters
 elastic_coupling_parameters(bool is_explicit, coupling::CouplingParameters cp);
 
+/// The Hertz contact of the last contact update (G5 for the elastic fold)
+struct HertzState
+{
+  double penetration
+      = 0;           ///< δ: depth of the lowest surface point below y = 0 [m]
+  double radius = 0; ///< r: osculating radius there [m]
+  double force = 0;  ///< F_H without damping, times L_g [N]
+  /// Arc lengths (reference) of the first and last surface points below
+  /// y = 0: the contact line [m]
+  std::array<double, 2> line{0, 0};
+};
+
 class ElasticFold
 {
 public:
@@ -97,6 +118,12 @@ public:
   ElasticFold(MPI_Comm comm, const FoldProfile& profile,
               const ElasticFoldParameters& p, const ContactParameters& contact,
               double dt);
+
+  /// Local cells of the cover (none for a homogeneous fold)
+  const std::vector<std::int32_t>& cover_cells() const { return _cover; }
+  // The Hertz update captures `this`
+  ElasticFold(const ElasticFold&) = delete;
+  ElasticFold& operator=(const ElasticFold&) = delete;
 
   /// Surface points of all ranks, ordered inferior → superior
   std::size_t surface_size() const { return _X.size(); }
@@ -113,6 +140,10 @@ public:
   /// displacements `owned` (collective)
   std::vector<std::array<double, 2>>
   moved_surface(std::span<const double> owned) const;
+  /// Values of a displacement-space function at the ordered surface
+  /// points (collective)
+  std::vector<std::array<double, 2>>
+  surface_values(const dolfinx::fem::Function<double>& f) const;
   /// Pressure p at the ordered surface points [Pa]: traction −p n
   void set_pressure(std::span<const double> p);
 
@@ -129,6 +160,12 @@ public:
 
   /// Contact force along +y of the last step, times the depth L_g [N]
   double contact_force() const;
+  /// The Hertz contact at the last Newton iterate (--elastic.contact hertz)
+  const HertzState& hertz() const { return _hertz; }
+  /// Sets the Hertz contact's stiffness from the current displacement, as
+  /// at a step's first Newton iteration (for tests and diagnostics;
+  /// collective)
+  void update_contact() { update_hertz(1); }
   /// Translation h (towards the axis) of the medial surface's centre and
   /// its tilt φ (counter-clockwise, > 0 divergent) of a moved surface
   std::array<double, 2>
@@ -159,6 +196,14 @@ private:
   const FoldProfile& _profile;
   mesh::MeshData _mesh;
   std::unique_ptr<structure::ElasticSolver> _solver;
+  /// --elastic.contact hertz: the contact pressure k δ(X) (1 + b_H δ̇)
+  /// with k set before the residual of Newton iteration `iteration` so
+  /// that its integral is F_H
+  void update_hertz(int iteration);
+  ContactParameters _contact;
+  double _r_min = 0, _r_max = 0; // bounds of the osculating radius [m]
+  HertzState _hertz;
+  std::vector<std::int32_t> _cover;
   std::vector<std::int32_t> _owned; ///< owned surface dof blocks
   /// The gathered (rank-ordered) index of each ordered point
   std::vector<std::size_t> _order;

@@ -44,7 +44,14 @@ void describe_elastic(fsai::glottis::ElasticFold& fold,
   fsai::log::info("elastic fold: {} dofs, {} surface points; in-vacuo modes "
                   "{:.1f} / {:.1f} / {:.1f} Hz",
                   fold.dofs(), fold.surface_size(), f.at(0), f.at(1), f.at(2));
+  std::int64_t cover = 0;
+  for (auto c : fold.cover_cells())
+    cover += c < fold.mesh().mesh->topology().index_map(2)->size_local();
+  MPI_Allreduce(MPI_IN_PLACE, &cover, 1, MPI_INT64_T, MPI_SUM, fold.comm());
+  if (cover > 0)
+    fsai::log::info("elastic fold: body-cover, {} cover cells", cover);
   summary.set("fold_dofs", fold.dofs());
+  summary.set("fold_cover_cells", cover);
   summary.set("invacuo_frequencies_hz", f);
 }
 

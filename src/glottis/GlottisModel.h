@@ -22,6 +22,8 @@ class RunSummary;
 
 namespace fsai::glottis
 {
+class ElasticFold;
+
 class GlottisModel
 {
 public:
@@ -53,6 +55,8 @@ public:
     return {};
   }
   virtual std::vector<io::TimeSeriesWriter::Field> fold_fields() { return {}; }
+  /// The elastic fold of the elastic variants (nullptr for the 2-DOF fold)
+  virtual ElasticFold* elastic_fold() { return nullptr; }
   /// Log the fold (mass, stiffness or dofs, in-vacuo modes) and the flow
   /// (unknowns), and put them in the summary
   virtual void describe(io::RunSummary& summary) = 0;

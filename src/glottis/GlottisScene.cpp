@@ -53,6 +53,10 @@ void fsai::glottis::GlottisSceneParameters::bind(fsai::common::Parameters& p)
   p.add("stats_from", stats_from,
         "limit-cycle statistics over t >= stats_from * duration");
   p.add("write_every", write_every, "fe: XDMF output every N steps (0: none)");
+  p.add("surface_every", surface_every,
+        "--fold elastic: the fold's surface displacement every N steps "
+        "(fold_surface.csv) and its in-vacuo modes there (modes_surface.csv) "
+        "for bench/glottis_pod.py (0: none)");
   p.add("onset_sweep", onset_sweep,
         "bernoulli: linear stability of the static equilibrium at these "
         "p_sub [Pa] (printed, onset.csv) instead of a time run");
@@ -81,6 +85,9 @@ void fsai::glottis::GlottisSceneParameters::validate() const
   fsai::require(replay.empty() or flow == "fe", "--replay",
                 "used with --flow fe", replay);
   fsai::require(ramp >= 0, "--ramp", ">= 0", ramp);
+  fsai::require(surface_every >= 0, "--surface_every", ">= 0", surface_every);
+  fsai::require(surface_every == 0 or fold == "elastic", "--surface_every",
+                "used with --fold elastic", surface_every);
 }
 //-----------------------------------------------------------------------------
 void fsai::glottis::GlottisScene::bind(fsai::common::Parameters& p)

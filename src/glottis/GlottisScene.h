@@ -42,6 +42,8 @@ struct GlottisSceneParameters
   double y_sep_min = 20e-6;  ///< [m]
   double stats_from = 0.5;   ///< statistics over t ≥ stats_from · duration
   int write_every = 50;      ///< XDMF every N steps (0: none)
+  /// --fold elastic: fold_surface.csv every N steps (0: none)
+  int surface_every = 0;
   std::vector<double> onset_sweep; ///< p_sub values of the stability sweep
   std::string replay; ///< fe: a series.csv whose fold states move the mesh
   double ramp = 5e-3; ///< elastic + Bernoulli: p_sub ramp [s]

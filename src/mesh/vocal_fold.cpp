@@ -155,8 +155,9 @@ std::vector<std::int32_t> fsai::mesh::attached_facets(const MeshData& m)
 }
 //-----------------------------------------------------------------------------
 std::vector<std::int32_t>
-fsai::mesh::cover_cells(const dolfinx::mesh::Mesh& mesh,
-                        const VocalFoldGeometry& g)
+fsai::mesh::cells_near_curve(const dolfinx::mesh::Mesh& mesh,
+                             const std::vector<std::array<double, 2>>& curve,
+                             double distance)
 {
   const int tdim = mesh.topology().dim();
   const std::int32_t n = mesh.topology().index_map(tdim)->size_local()
@@ -164,25 +165,31 @@ fsai::mesh::cover_cells(const dolfinx::mesh::Mesh& mesh,
   std::vector<std::int32_t> all(n);
   std::iota(all.begin(), all.end(), 0);
   std::vector<double> mid = dolfinx::mesh::compute_midpoints(mesh, tdim, all);
-  const auto poly = g.free_profile();
-  std::vector<std::int32_t> cover;
+  std::vector<std::int32_t> near;
   for (std::int32_t c = 0; c < n; ++c)
   {
     const double px = mid[3 * c], py = mid[3 * c + 1];
     double d2 = 1e300;
-    for (std::size_t i = 0; i + 1 < poly.size(); ++i)
+    for (std::size_t i = 0; i + 1 < curve.size(); ++i)
     {
-      const auto [ax, ay] = poly[i];
-      const auto [bx, by] = poly[i + 1];
+      const auto [ax, ay] = curve[i];
+      const auto [bx, by] = curve[i + 1];
       const double ex = bx - ax, ey = by - ay;
       const double t = std::clamp(
           ((px - ax) * ex + (py - ay) * ey) / (ex * ex + ey * ey), 0.0, 1.0);
       const double dx = px - ax - t * ex, dy = py - ay - t * ey;
       d2 = std::min(d2, dx * dx + dy * dy);
     }
-    if (d2 < g.cover * g.cover)
-      cover.push_back(c);
+    if (d2 < distance * distance)
+      near.push_back(c);
   }
-  return cover;
+  return near;
+}
+//-----------------------------------------------------------------------------
+std::vector<std::int32_t>
+fsai::mesh::cover_cells(const dolfinx::mesh::Mesh& mesh,
+                        const VocalFoldGeometry& g)
+{
+  return cells_near_curve(mesh, g.free_profile(), g.cover);
 }
 //-----------------------------------------------------------------------------

@@ -62,6 +62,14 @@ MeshData vocal_fold(MPI_Comm comm, const VocalFoldGeometry& g, int dim = 3);
 /// 3D also "anterior" and "posterior" (a section has no such faces)
 std::vector<std::int32_t> attached_facets(const MeshData& m);
 
+/// Local cells (owned and ghosts) whose midpoint lies within `distance` of
+/// the open polyline `curve` in the x–y plane (the cover of a body–cover
+/// fold: `curve` its free surface)
+std::vector<std::int32_t>
+cells_near_curve(const dolfinx::mesh::Mesh& mesh,
+                 const std::vector<std::array<double, 2>>& curve,
+                 double distance);
+
 /// Local cells whose midpoint lies within g.cover of the free surface
 /// (the cover of a body–cover fold)
 std::vector<std::int32_t> cover_cells(const dolfinx::mesh::Mesh& mesh,

@@ -243,6 +243,18 @@ double fsai::structure::ElasticSolver::contact_force() const
   return global;
 }
 //-----------------------------------------------------------------------------
+double fsai::structure::ElasticSolver::contact_overlap() const
+{
+  // The contact form with k = 1 and no damping
+  const double k = _k_c->value[0], b = _b_c->value[0];
+  _k_c->value[0] = 1.0;
+  _b_c->value[0] = 0.0;
+  const double overlap = contact_force();
+  _k_c->value[0] = k;
+  _b_c->value[0] = b;
+  return overlap;
+}
+//-----------------------------------------------------------------------------
 void fsai::structure::ElasticSolver::set_body_acceleration(
     std::array<double, 3> g)
 {
@@ -258,7 +270,8 @@ int fsai::structure::ElasticSolver::newton(const std::string& what)
   la::petsc::Vector _du(la::petsc::create_vector_wrap(du), false);
   // Linear elasticity without contact: one Newton iteration is exact and
   // the Jacobian constant
-  const bool linear = _p.model == "linear" and _k_c->value[0] == 0.0;
+  const bool linear
+      = _p.model == "linear" and _k_c->value[0] == 0.0 and !_contact_update;
   double r0 = -1.0;
   double dnorm_prev = -1.0;
   // Modified Newton in dynamic steps only: there the mass term dominates
@@ -269,6 +282,8 @@ int fsai::structure::ElasticSolver::newton(const std::string& what)
     _J_stale = true;
   for (int it = 1; it <= _p.newton_max_it; ++it)
   {
+    if (_contact_update)
+      _contact_update(it);
     // Residual, zero on the Dirichlet rows (u stays 0 there)
     {
       common::ScopedTimer t("solid: assemble residual");

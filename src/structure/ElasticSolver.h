@@ -7,6 +7,7 @@
 // with load stepping, and save/restore of the state for the sub-iterations
 // of a partitioned coupling. PETSc options prefix "solid_" (default LU).
 #pragma once
+#include <functional>
 
 #include <array>
 #include <common/CooMatrixAssembler.h>
@@ -112,6 +113,17 @@ public:
   /// Contact force along +y on the loaded facets at the current state [N]
   /// (per unit depth in 2D; collective)
   double contact_force() const;
+  /// ∫ δ dS over the loaded facets at the current state [m²] (the contact
+  /// force per unit stiffness, without damping; collective)
+  double contact_overlap() const;
+  /// A contact law whose stiffness depends on the state (the Hertz
+  /// contact of glottis::ElasticFold) sets k, b, y_c (set_contact) from the
+  /// current iterate in `update(iteration)`, called before every residual
+  /// of a Newton solve (iteration 1, 2, …; collective)
+  void set_contact_update(std::function<void(int)> update)
+  {
+    _contact_update = std::move(update);
+  }
   /// Traction on the loaded facets [Pa] (P1/P2 vector field)
   dolfinx::fem::Function<double>& traction() { return *_traction; }
 
@@ -178,6 +190,7 @@ private:
       _traction, _lambda, _mu, _rho;
   std::shared_ptr<dolfinx::fem::Constant<double>> _dynamic, _load, _g, _k_c,
       _b_c, _y_c;
+  std::function<void(int)> _contact_update;
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _loaded_tags;
