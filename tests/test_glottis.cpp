@@ -668,10 +668,7 @@ TEST_CASE("Body-cover elastic fold: the cover is the band under the "
     area += 0.5 * std::abs(ax * by - ay * bx);
   }
   MPI_Allreduce(MPI_IN_PLACE, &area, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-  const auto& pts = profile.points();
-  double length = 0;
-  for (std::size_t i = 0; i + 1 < pts.size(); ++i)
-    length += std::hypot(pts[i + 1][0] - pts[i][0], pts[i + 1][1] - pts[i][1]);
+  const double length = profile.arc_length(profile.points().back());
   const double band = ElasticFoldParameters{}.cover * length;
   CHECK(std::abs(area / band - 1) < 0.1);
   // Cover 2 kPa on a body of 8 kPa: every mode between the all-body fold's

@@ -224,14 +224,20 @@ std::int64_t fsai::glottis::ElasticFold::dofs() const
   return im.size_global() * _solver->space()->dofmap()->index_map_bs();
 }
 //-----------------------------------------------------------------------------
-std::vector<double> fsai::glottis::ElasticFold::surface_displacement() const
+std::vector<double> fsai::glottis::ElasticFold::owned_surface_values(
+    const dolfinx::fem::Function<double>& f) const
 {
-  const auto u = _solver->displacement()->x()->array();
+  const auto u = f.x()->array();
   std::vector<double> out;
   out.reserve(2 * _owned.size());
   for (auto d : _owned)
     out.insert(out.end(), {u[2 * d], u[2 * d + 1]});
   return out;
+}
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::glottis::ElasticFold::surface_displacement() const
+{
+  return owned_surface_values(*_solver->displacement());
 }
 //-----------------------------------------------------------------------------
 std::vector<double> fsai::glottis::ElasticFold::surface_prediction() const
@@ -268,12 +274,7 @@ fsai::glottis::ElasticFold::moved_surface(std::span<const double> owned) const
 std::vector<std::array<double, 2>> fsai::glottis::ElasticFold::surface_values(
     const dolfinx::fem::Function<double>& f) const
 {
-  const auto u = f.x()->array();
-  std::vector<double> owned;
-  owned.reserve(2 * _owned.size());
-  for (auto d : _owned)
-    owned.insert(owned.end(), {u[2 * d], u[2 * d + 1]});
-  auto x = moved_surface(owned);
+  auto x = moved_surface(owned_surface_values(f));
   for (std::size_t k = 0; k < x.size(); ++k)
     x[k] = {x[k][0] - _X[k][0], x[k][1] - _X[k][1]};
   return x;

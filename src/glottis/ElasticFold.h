@@ -200,6 +200,10 @@ private:
   /// with k set before the residual of Newton iteration `iteration` so
   /// that its integral is F_H
   void update_hertz(int iteration);
+  /// This rank's owned surface values of a displacement-space function
+  /// (x, y per owned surface point)
+  std::vector<double>
+  owned_surface_values(const dolfinx::fem::Function<double>& f) const;
   ContactParameters _contact;
   double _r_min = 0, _r_max = 0; // bounds of the osculating radius [m]
   HertzState _hertz;
