@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Every equation label cited in the code's comments (E1–E21, G1–G7,
-A1–A8, and ranges such as E16–E18) is defined in docs/model.md, as
+A1–A10, and ranges such as E16–E18) is defined in docs/model.md, as
 **LABEL** (or, for a section, ## §N). Exit status 1 lists the missing ones."""
 import os
 import re

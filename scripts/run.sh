@@ -3,7 +3,7 @@
 # Idempotent and incremental. Extra arguments go to the demo.
 # The main job is the voice: `fsai_demo --vowel u` on 2 MPI ranks (0.1 s of
 # phonation: flow, folds and sound; results in results/fsai_demo/, among
-# them sound.wav and voice.png).
+# them sound.wav and report.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh

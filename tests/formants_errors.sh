@@ -20,8 +20,8 @@ s="--snapshots 0"
   "header|$s --area-function $work/header.csv" \
   "model|$s --model 3d" \
   "radiation|$s --radiation none" \
-  "c0.*> 0|$s --acoustics.c0 -343" \
-  "rho0.*> 0|$s --acoustics.rho0 0" \
+  "c0.*> 0|$s --wave.c0 -343" \
+  "rho0.*> 0|$s --wave.rho0 0" \
   "f_max.*> 0|$s --pulse.f_max 0" \
   "duration.*> 0|$s --pulse.duration -1" \
   "mic_distance|$s --mic_distance 0.5" \

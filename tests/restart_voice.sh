@@ -4,7 +4,8 @@
 # must reproduce the uninterrupted run's series (flow, fold, p' at the lips
 # and the microphone) and summary (f0, formants, SPL) within 1e-9 of each
 # quantity's largest value (two uninterrupted 2-rank runs differ in the
-# last digits), and acoustic.xdmf must hold each output time once.
+# last digits), and acoustic.xdmf must hold each output time once. The
+# reduced voice (serial) restarts byte for byte.
 # usage: restart_voice.sh FSAI_DEMO MPIEXEC
 demo=$1
 mpiexec=${2:-mpirun}
@@ -49,4 +50,15 @@ for f in flow acoustic; do
     echo "FAIL $f.xdmf times differ: [$a] vs [$b]"; fail=1
   fi
 done
+# The reduced voice (Bernoulli flow, 1D tract: its state in
+# checkpoint.json), serially: the restarted series byte for byte
+args=(--flow bernoulli --acoustics 1d --duration 0.1 --report=false --checkpoint-every 1000)
+"$demo" "${args[@]}" --output "$work/rfull" >/dev/null 2>&1 || { echo "FAIL reduced full run"; fail=1; }
+"$demo" "${args[@]}" --debug.kill_at_step 2500 --output "$work/rcut" >/dev/null 2>&1
+"$demo" "${args[@]}" --restart "$work/rcut" >/dev/null 2>&1 || { echo "FAIL reduced restart"; fail=1; }
+if cmp -s "$work/rfull/series.csv" "$work/rcut/series.csv"; then
+  echo "ok   reduced voice: restarted series.csv byte-identical ($(wc -l <"$work/rcut/series.csv") lines)"
+else
+  echo "FAIL reduced voice: restarted series.csv differs"; fail=1
+fi
 exit $fail

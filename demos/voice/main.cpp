@@ -2,33 +2,44 @@
 //
 // fsai_demo: the voice — airflow, self-oscillating vocal folds that close
 // the glottis, and the sound that forms in the vocal tract (docs/model.md
-// §4–§5). The glottis scene with the FE flow (glottis::FlowGlottis: ALE
-// Navier–Stokes, 2-DOF fold, closure, Hertz contact) drives, one way, the
-// acoustic wave equation (E14, E21) on a fixed domain that contains the
-// flow domain and continues it by the vowel's vocal tract to the lips and
-// a radiation region. Each step: the coupled flow step, then the sound's
-// sources from it (voice::VoiceSource: Lighthill, fold surface, ±Q
-// monopole, slit law) and one acoustic Newmark step with the same Δt.
+// §4–§5), at three fidelities (docs/voice.md):
+//   full     --flow fe --acoustics fe (default): the glottis scene with the
+//            FE flow (glottis::FlowGlottis: ALE Navier–Stokes, 2-DOF fold,
+//            closure, Hertz contact) drives, one way, the acoustic wave
+//            equation (E14, E21) on a fixed domain that contains the flow
+//            domain and continues it by the vowel's tract to the lips and a
+//            radiation region (sources: voice::VoiceSource);
+//   mixed    --flow bernoulli --acoustics fe: the quasi-steady flow, its Q
+//            and the fold's motion as the sound's sources;
+//   reduced  --flow bernoulli --acoustics 1d: the vowel's tract as a 1D
+//            transmission line (A9), 0.1 s of voice in well under a second.
+// Each step: the glottis's step, then one step of the sound with the same
+// Δt (voice::VoiceAcoustics). --fold elastic puts the plane-strain FE fold
+// in the glottis (with the 1D acoustics).
 //
 // Sample runs:
 //   mpirun -n 2 ./fsai_demo --vowel u        # 0.1 s of voice
 //   ./fsai_demo --quick                      # short coarse run
+//   ./fsai_demo --flow bernoulli --acoustics 1d --vowel a
+//   ./fsai_demo --flow bernoulli --acoustics 1d --fold elastic
 //   ./fsai_demo --vowel a --radiation pml
 //   ./fsai_demo --tract tube                 # a short straight tube
 //
 // Outputs in --output (default results/fsai_demo): series.csv, sound.wav
-// (microphone, 44.1 kHz), spectrum.csv, voice.png, flow.xdmf, acoustic.xdmf,
-// summary.json (vowel, f0_hz, formants_from_sound_hz, tract_formants_hz,
-// spl_db, sim_time_s, wav, …). Checkpoints and restarts as fsai_glottis.
+// (microphone, 44.1 kHz), spectrum.csv, report.png, flow.xdmf,
+// acoustic.xdmf, summary.json (vowel, f0_hz, formants_from_sound_hz,
+// tract_formants_hz, spl_db, the voice measures as "voice", …).
+// Checkpoints and restarts as fsai_glottis.
 
 #include <common/Parameters.h>
 #include <common/Runtime.h>
 #include <common/log.h>
 #include <common/timer.h>
-#include <io/PointProbes.h>
 #include <io/RunLoop.h>
 #include <io/RunSummary.h>
+#include <io/csv_columns.h>
 #include <io/output_dir.h>
+#include <voice/VoiceAcoustics.h>
 #include <voice/VoiceScene.h>
 
 #include <chrono>
@@ -59,49 +70,49 @@ int main(int argc, char* argv[])
         summary.set_parameters(params.to_json());
         io::RunLoop loop(rt.comm(), vp.output, params.to_json(), vp.run);
 
-        // 2. The tract, the flow (the glottis scene) and the sound
+        // 2. The tract, the glottis and the sound
         const fsai::glottis::FoldProfile profile(gs.geometry);
         const auto tract = fsai::voice::make_tract(scene, profile);
-        auto flow = std::make_unique<fsai::glottis::FlowGlottis>(
-            rt.comm(), profile, gs.fold, gs.contact, gs.fe, gs.fluid, gs.ale,
-            gs.coupling, vp.output + "/coupling.csv", loop.rows_kept());
-        auto sound = fsai::voice::make_sound(rt.comm(), scene, profile, tract);
-        auto& wave = *sound.solver;
-        fsai::voice::VoiceSource source(rt.comm(), scene.source, gs, profile,
-                                        *flow, sound.mesh, wave, vp.dt);
-        fsai::log::info("FE flow: {} cells, {} dofs; acoustics: {} cells, {} "
-                        "dofs",
-                        flow->channel().cells(), flow->channel().flow().dofs(),
-                        sound.mesh.mesh->topology().index_map(2)->size_global(),
-                        wave.dofs());
-        summary.set("flow_dofs", flow->channel().flow().dofs());
-        summary.set("acoustic_dofs", wave.dofs());
+        if (vp.reanalyse)
+        {
+          const auto c = io::read_csv_columns(
+              vp.output + "/series.csv", {"t_s", "gap_m", "Q_m3s", "p_mic_pa"});
+          fsai::voice::analyse_voice(rt.comm(), scene, tract, c[0], c[1], c[2],
+                                     c[3], summary);
+          summary.write(vp.output + "/reanalysis.json");
+          return;
+        }
+        auto glottis = scene.make_glottis(rt.comm(), profile, loop.rows_kept());
+        auto sound = fsai::voice::make_acoustics(rt.comm(), scene, profile,
+                                                 tract, *glottis);
+        glottis->describe(summary);
+        summary.set("fidelity", fmt::format("flow {}, acoustics {}, fold {}",
+                                            vp.flow, vp.acoustics, vp.fold));
+        summary.set("acoustic_dofs", sound->dofs());
         summary.set("tract_length_m", tract.area.length());
         summary.set("vowel", tract.label);
         summary.set("tract_formants_hz", tract.formants);
         summary.set("tract_bandwidths_hz", tract.bandwidths);
         summary.set("domain_formants_hz", tract.domain_formants);
-        io::PointProbes probes(sound.mesh.mesh,
-                               {{sound.x_lips, 0.0, 0.0},
-                                {sound.x_lips + vp.mic_distance, 0.0, 0.0}});
         std::unique_ptr<io::TimeSeriesWriter> flow_xdmf, sound_xdmf;
-        if (vp.write_every > 0)
+        if (vp.write_every > 0 and !glottis->flow_fields().empty())
         {
           flow_xdmf = std::make_unique<io::TimeSeriesWriter>(
-              vp.output + "/flow.xdmf", flow->flow_fields(),
+              vp.output + "/flow.xdmf", glottis->flow_fields(),
               loop.restart_time());
+        }
+        if (vp.write_every > 0 and !sound->fields().empty())
+        {
           sound_xdmf = std::make_unique<io::TimeSeriesWriter>(
-              vp.output + "/acoustic.xdmf",
-              std::vector<io::TimeSeriesWriter::Field>{wave.pressure()},
+              vp.output + "/acoustic.xdmf", sound->fields(),
               loop.restart_time());
         }
 
-        // 3. Time loop: flow step (coupled), then one acoustic step
+        // 3. Time loop: glottis step, then one step of the sound
         if (loop.restarting())
         {
-          flow->load(loop.fields());
-          wave.load(loop.fields(), "sound.");
-          source.load(loop.fields());
+          glottis->restore(loop.checkpoint(), loop.fields());
+          sound->restore(loop.checkpoint(), loop.fields());
         }
         const long n = std::lround(vp.duration / vp.dt);
         std::vector<double> t, g, Q, p_mic;
@@ -118,56 +129,53 @@ int main(int argc, char* argv[])
           p_mic.push_back(r[7]);
           its += long(r[8]);
         }
-        source.start(*flow, Q.empty() ? 0.0 : Q.back());
+        sound->start(*glottis, Q.empty() ? 0.0 : Q.back());
         fsai::glottis::Sample s;
-        std::vector<double> p{0, 0};
         io::RunHooks hooks;
         hooks.step = [&](long k)
         {
-          s = flow->step();
-          {
-            fsai::common::ScopedTimer timer("demo: sound step");
-            source.apply(*flow, s);
-            wave.step();
-          }
-          p = probes.values(*wave.pressure());
-          if (!std::isfinite(p[0]) or !std::isfinite(p[1]))
+          s = glottis->step();
+          sound->step(*glottis, s);
+          const double pl = sound->p_lips(), pm = sound->p_mic();
+          if (!std::isfinite(pl) or !std::isfinite(pm))
           {
             throw std::runtime_error(fmt::format(
                 "acoustic pressure is not finite at t = {:.6f} s (step {})",
                 s.t, k));
           }
-          loop.row({s.t, s.gap, s.Q, s.h, s.phi, s.contact_force, p[0], p[1],
+          loop.row({s.t, s.gap, s.Q, s.h, s.phi, s.contact_force, pl, pm,
                     double(s.iterations)});
           t.push_back(s.t);
           g.push_back(s.gap);
           Q.push_back(s.Q);
-          p_mic.push_back(p[1]);
+          p_mic.push_back(pm);
           its += s.iterations;
-          if (flow_xdmf and k % vp.write_every == 0)
+          if (k % std::max(vp.write_every, 1) == 0)
           {
-            flow_xdmf->write(s.t);
-            sound_xdmf->write(s.t);
+            if (flow_xdmf)
+              flow_xdmf->write(s.t);
+            if (sound_xdmf)
+              sound_xdmf->write(s.t);
           }
           return io::StepReport{s.t, s.converged};
         };
-        hooks.save = [&](auto&, auto& fields)
+        hooks.save = [&](auto& scalars, auto& fields)
         {
-          fields = flow->save();
-          wave.save(*fields, "sound.");
-          source.save(*fields);
+          glottis->checkpoint(scalars, fields);
+          sound->checkpoint(scalars, fields);
         };
         hooks.last_good = [&](const std::string& path)
-        { return flow->write_last_good(path); };
+        { return glottis->write_last_good(path); };
         hooks.progress = [&]
         {
           return fmt::format(
               "t = {:.5f} g = {:+.3e} Q = {:.3e} p_mic = {:+.3e}", s.t, s.gap,
-              s.Q, p[1]);
+              s.Q, sound->p_mic());
         };
         const double loop_wall = loop.run(n, hooks);
 
         // 4. The fold's cycle and the sound's analysis, summary and chart
+        fsai::common::ScopedTimer analysis("demo: analysis");
         const auto measures = fsai::voice::analyse_voice(
             rt.comm(), scene, tract, t, g, Q, p_mic, summary);
         summary.set("steps", n);
@@ -184,6 +192,7 @@ int main(int argc, char* argv[])
                             .count(),
                         vp.output);
         fsai::voice::check_voice(scene, measures);
-        io::draw_chart(rt.comm(), "plot_voice.py", vp.output);
+        if (vp.report)
+          io::draw_chart(rt.comm(), "plot_voice.py", vp.output);
       });
 }

@@ -70,33 +70,32 @@ la::petsc::Matrix assemble(const fem::Form<double>& a)
 //-----------------------------------------------------------------------------
 void fsai::acoustics::WaveParameters::bind(fsai::common::Parameters& p)
 {
-  p.add("acoustics.c0", c0, "speed of sound [m/s]");
-  p.add("acoustics.rho0", rho0, "air density [kg/m^3]");
-  p.add("acoustics.newmark_beta", newmark_beta,
-        "Newmark beta (1/4: trapezoidal)");
-  p.add("acoustics.newmark_gamma", newmark_gamma,
+  p.add("wave.c0", c0, "speed of sound [m/s]");
+  p.add("wave.rho0", rho0, "air density [kg/m^3]");
+  p.add("wave.newmark_beta", newmark_beta, "Newmark beta (1/4: trapezoidal)");
+  p.add("wave.newmark_gamma", newmark_gamma,
         "Newmark gamma (1/2: no numerical damping)");
-  p.add("acoustics.wall_mass", wall_mass,
+  p.add("wave.wall_mass", wall_mass,
         "yielding wall: mass per unit area [kg/m^2]");
-  p.add("acoustics.wall_resistance", wall_resistance,
+  p.add("wave.wall_resistance", wall_resistance,
         "yielding wall: resistance per unit area [Pa s/m]");
-  p.add("acoustics.wall_stiffness", wall_stiffness,
+  p.add("wave.wall_stiffness", wall_stiffness,
         "yielding wall: stiffness per unit area [Pa/m]");
 }
 //-----------------------------------------------------------------------------
 void fsai::acoustics::WaveParameters::validate() const
 {
-  fsai::require_positive("--acoustics.c0", c0);
-  fsai::require_positive("--acoustics.rho0", rho0);
-  fsai::require_range("--acoustics.newmark_gamma", newmark_gamma, 0.5, 1.0);
+  fsai::require_positive("--wave.c0", c0);
+  fsai::require_positive("--wave.rho0", rho0);
+  fsai::require_range("--wave.newmark_gamma", newmark_gamma, 0.5, 1.0);
   // Unconditional stability needs 2β >= γ >= 1/2
   fsai::require(2 * newmark_beta >= newmark_gamma and newmark_beta <= 0.5,
-                "--acoustics.newmark_beta",
+                "--wave.newmark_beta",
                 "in [gamma/2, 1/2] (unconditionally stable)", newmark_beta);
-  fsai::require_positive("--acoustics.wall_mass", wall_mass);
-  fsai::require(wall_resistance >= 0, "--acoustics.wall_resistance", ">= 0",
+  fsai::require_positive("--wave.wall_mass", wall_mass);
+  fsai::require(wall_resistance >= 0, "--wave.wall_resistance", ">= 0",
                 wall_resistance);
-  fsai::require(wall_stiffness >= 0, "--acoustics.wall_stiffness", ">= 0",
+  fsai::require(wall_stiffness >= 0, "--wave.wall_stiffness", ">= 0",
                 wall_stiffness);
 }
 //-----------------------------------------------------------------------------

@@ -19,7 +19,7 @@ void ac::FormantParameters::bind(fsai::common::Parameters& p)
   p.add("output", output, "output folder");
   p.add("yielding_walls", yielding_walls,
         "tract walls yield (mass-resistance-spring per unit area, "
-        "--acoustics.wall_*), in the FE and the 1D model alike");
+        "--wave.wall_*), in the FE and the 1D model alike");
   p.add_choice("vowel", vowel, {"u", "a", "i"},
                "vowel of the shipped area functions (meshes/vowel_*.csv)");
   p.add("area-function", area_function,

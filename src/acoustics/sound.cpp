@@ -200,12 +200,23 @@ std::vector<double> fsai::acoustics::lpc_formants(const std::vector<double>& x,
                                                   int order,
                                                   double max_bandwidth)
 {
+  std::vector<double> f;
+  for (const auto& r : lpc_resonances(x, dt, f_max, order, max_bandwidth))
+    f.push_back(r.f);
+  return f;
+}
+//-----------------------------------------------------------------------------
+std::vector<fsai::acoustics::Resonance>
+fsai::acoustics::lpc_resonances(const std::vector<double>& x, double dt,
+                                double f_max, int order, double max_bandwidth,
+                                double pre_emphasis)
+{
   const double fs = 2 * f_max;
   std::vector<double> y = resample(demeaned(x), dt, fs);
   if (int(y.size()) < 4 * order)
     return {};
   for (std::size_t i = y.size(); i-- > 1;)
-    y[i] -= 0.97 * y[i - 1];
+    y[i] -= pre_emphasis * y[i - 1];
   const std::size_t n = y.size();
   for (std::size_t i = 0; i < n; ++i)
     y[i] *= 0.54 - 0.46 * std::cos(2 * M_PI * i / double(n - 1));
@@ -233,25 +244,78 @@ std::vector<double> fsai::acoustics::lpc_formants(const std::vector<double>& x,
     if (!(e > 0))
       return {};
   }
+  return predictor_resonances(a, fs, f_max, max_bandwidth);
+}
+//-----------------------------------------------------------------------------
+std::vector<fsai::acoustics::Resonance>
+fsai::acoustics::predictor_resonances(const std::vector<double>& a, double fs,
+                                      double f_max, double max_bandwidth)
+{
   // Roots of z^p + a1 z^(p-1) + ... + ap: companion matrix eigenvalues
+  const int order = int(a.size()) - 1;
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(order, order);
   for (int j = 0; j < order; ++j)
     C(0, j) = -a[j + 1];
   for (int i = 1; i < order; ++i)
     C(i, i - 1) = 1.0;
   const Eigen::VectorXcd z = C.eigenvalues();
-  std::vector<double> f;
+  std::vector<Resonance> f;
   for (int i = 0; i < order; ++i)
   {
     if (z[i].imag() <= 0)
       continue;
     const double fi = std::arg(z[i]) * fs / (2 * M_PI);
     const double bi = -std::log(std::abs(z[i])) * fs / M_PI;
-    if (fi > 90.0 and bi < max_bandwidth and fi < f_max - 100.0)
-      f.push_back(fi);
+    if (fi > 90.0 and bi > 0 and bi < max_bandwidth and fi < f_max - 100.0)
+      f.push_back({fi, bi});
   }
-  std::sort(f.begin(), f.end());
+  std::sort(f.begin(), f.end(),
+            [](const auto& a, const auto& b) { return a.f < b.f; });
   return f;
+}
+//-----------------------------------------------------------------------------
+std::vector<fsai::acoustics::Resonance>
+fsai::acoustics::closed_phase_resonances(
+    const std::vector<double>& x, double dt,
+    const std::vector<std::array<double, 2>>& intervals, double f_max,
+    int order, double max_bandwidth)
+{
+  const double fs = 2 * f_max;
+  const std::vector<double> y = resample(demeaned(x), dt, fs);
+  // The rows s(n) + Σ a_k s(n − k) = 0 of every interval, with n − order
+  // at its start or later: the regressors stay inside the interval too,
+  // which keeps the closing excitation (spread over a few samples by the
+  // anti-aliasing filter) out of the fit. Least squares, no window
+  std::vector<std::array<std::size_t, 2>> spans;
+  std::size_t rows = 0;
+  for (const auto& iv : intervals)
+  {
+    const std::size_t a = std::size_t(std::ceil(std::max(0.0, iv[0]) * fs));
+    const std::size_t b = std::min(
+        y.size(), std::size_t(std::floor(std::max(0.0, iv[1]) * fs)) + 1);
+    if (b > a + std::size_t(order) + 1)
+    {
+      spans.push_back({a + std::size_t(order), b});
+      rows += b - a - std::size_t(order);
+    }
+  }
+  if (rows < std::size_t(3 * order))
+    return {};
+  Eigen::MatrixXd A(rows, order);
+  Eigen::VectorXd rhs(rows);
+  std::size_t r = 0;
+  for (const auto& [a, b] : spans)
+    for (std::size_t n = a; n < b; ++n, ++r)
+    {
+      rhs(r) = -y[n];
+      for (int k = 1; k <= order; ++k)
+        A(r, k - 1) = y[n - k];
+    }
+  const Eigen::VectorXd sol = A.colPivHouseholderQr().solve(rhs);
+  std::vector<double> p(order + 1, 1.0);
+  for (int k = 1; k <= order; ++k)
+    p[k] = sol(k - 1);
+  return predictor_resonances(p, fs, f_max, max_bandwidth);
 }
 //-----------------------------------------------------------------------------
 double fsai::acoustics::spl_db(const std::vector<double>& x)

@@ -4,6 +4,8 @@
 // of the voice scene): resampling, 16-bit WAV (libsndfile), fundamental
 // frequency by autocorrelation, formants by linear prediction, SPL.
 #pragma once
+#include "tube_model.h"
+#include <array>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,13 @@ double fundamental_frequency(const std::vector<double>& x, double dt,
 std::vector<double> lpc_formants(const std::vector<double>& x, double dt,
                                  double f_max = 5000.0, int order = 12,
                                  double max_bandwidth = 500.0);
+/// The same with each formant's bandwidth −ln|z| fs/π [Hz], and the
+/// pre-emphasis coefficient as an option (0: none, for a signal without
+/// the voice's spectral tilt)
+std::vector<Resonance> lpc_resonances(const std::vector<double>& x, double dt,
+                                      double f_max = 5000.0, int order = 12,
+                                      double max_bandwidth = 500.0,
+                                      double pre_emphasis = 0.97);
 
 /// The periodic part of a voiced signal: x (sampled every dt) cut into its
 /// whole periods T = 1/f0 from the start, each resampled to round(T/dt)
@@ -66,6 +75,29 @@ std::vector<double> lpc_formants(const std::vector<double>& x, double dt,
 /// of x's energy (mean removed) the periodic part carries.
 std::vector<double> periodic_part(const std::vector<double>& x, double dt,
                                   double f0, double* fraction = nullptr);
+
+/// Resonances of the predictor 1 + a1 z⁻¹ + … + ap z⁻ᵖ (a[0] = 1) at the
+/// sample rate fs: roots (companion-matrix eigenvalues) inside the unit
+/// circle with frequency in (90, f_max − 100) Hz and bandwidth
+/// −ln|z| fs/π below max_bandwidth, in ascending order
+std::vector<Resonance> predictor_resonances(const std::vector<double>& a,
+                                            double fs, double f_max,
+                                            double max_bandwidth);
+
+/// Formants by closed-phase covariance LPC (A10): x (sampled every dt from
+/// t = 0) resampled to 2 f_max, and the predictor of `order` fitted by least
+/// squares to the samples inside the `intervals` (times [s]) only, where
+/// the glottis is closed and the tract rings freely (regressors inside the
+/// interval too: an interval gives equations only beyond its first `order`
+/// samples): its poles are the
+/// tract's, without the bias of the harmonics that the autocorrelation
+/// method has (no window, no pre-emphasis: the free decay has no source
+/// tilt). Empty if the intervals hold fewer than 3 × order equations.
+std::vector<Resonance>
+closed_phase_resonances(const std::vector<double>& x, double dt,
+                        const std::vector<std::array<double, 2>>& intervals,
+                        double f_max = 5000.0, int order = 12,
+                        double max_bandwidth = 500.0);
 
 /// Sound pressure level 20 log10(p_rms / 20 µPa) of x (mean removed)
 double spl_db(const std::vector<double>& x);

@@ -170,6 +170,7 @@ void fsai::common::Parameters::parse(const std::vector<std::string>& args)
   {
     throw InputError(one_line(e.what()) + " (see --help)");
   }
+  start_deferred_libraries();
 
   if (!_config_file.empty())
     apply_toml(_config_file);

@@ -2,6 +2,7 @@
 #include "Runtime.h"
 #include "errors.h"
 #include "timer.h"
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cstdlib>
@@ -11,6 +12,8 @@
 #include <petscsys.h>
 #include <slepcsys.h>
 #include <thread>
+
+fsai::common::Runtime* fsai::common::Runtime::instance = nullptr;
 
 namespace
 {
@@ -67,7 +70,31 @@ fsai::common::Runtime::Runtime(int argc, char* argv[])
     _petsc_argv.push_back(a.data());
   _petsc_argv.push_back(nullptr);
 
-  dolfinx::init_logging(argc, argv);
+  _argc = argc;
+  _argv = argv;
+  // --help needs no library: the usage is printed without starting MPI,
+  // PETSc and SLEPc (most of a second). When a "--help" token turns out
+  // to be an option's value, the parser starts them after all
+  // (start_deferred_libraries) before anything can call MPI
+  _deferred = std::any_of(_app_args.begin(), _app_args.end(),
+                          [](const std::string& a)
+                          { return a == "--help" or a == "-h"; });
+  instance = this;
+  if (!_deferred)
+    start();
+}
+//-----------------------------------------------------------------------------
+void fsai::common::Runtime::start()
+{
+  _deferred = false;
+  // A process started without mpirun is a singleton: Open MPI's default
+  // point-to-point layer (UCX) spends 0.2 s probing network devices it
+  // will never use; the shared-memory one starts in half the time. The
+  // reduced voice runs hundreds of times in a sweep, so this counts. A
+  // user's own choice (the variable set) wins.
+  if (!std::getenv("OMPI_COMM_WORLD_SIZE"))
+    setenv("OMPI_MCA_pml", "ob1", 0);
+  dolfinx::init_logging(_argc, _argv);
   int petsc_argc = static_cast<int>(_petsc_argv.size()) - 1;
   char** petsc_argv = _petsc_argv.data();
   PetscErrorCode ierr
@@ -78,13 +105,23 @@ fsai::common::Runtime::Runtime(int argc, char* argv[])
               << std::endl;
     std::exit(1);
   }
+  _started = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &_size);
   MPI_Comm_dup(MPI_COMM_WORLD, &_error_comm);
 }
 //-----------------------------------------------------------------------------
+void fsai::common::start_deferred_libraries()
+{
+  if (Runtime::instance and Runtime::instance->_deferred)
+    Runtime::instance->start();
+}
+//-----------------------------------------------------------------------------
 fsai::common::Runtime::~Runtime()
 {
+  instance = nullptr;
+  if (!_started)
+    return;
   MPI_Comm_free(&_error_comm);
   SlepcFinalize();
 }

@@ -53,7 +53,18 @@ private:
   int _rank = 0;
   int _size = 1;
   MPI_Comm _error_comm = MPI_COMM_NULL;
+  int _argc = 0;
+  char** _argv = nullptr;
+  bool _deferred = false, _started = false;
+  void start();
+  static Runtime* instance;
+  friend void start_deferred_libraries();
 };
+
+/// Start MPI, PETSc and SLEPc if the Runtime deferred them (a "--help"
+/// token on the command line: the usage needs none of them). Called by
+/// Parameters::parse once the arguments are parsed without a help request.
+void start_deferred_libraries();
 
 /// True if every rank of `comm` calls this within `timeout_s` seconds (a
 /// non-blocking barrier polled until the deadline). Used on the error path

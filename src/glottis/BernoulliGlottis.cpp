@@ -3,8 +3,38 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <common/Parameters.h>
+#include <common/errors.h>
 #include <fmt/format.h>
 #include <stdexcept>
+
+//-----------------------------------------------------------------------------
+void fsai::glottis::BernoulliGlottisParameters::bind(
+    fsai::common::Parameters& p)
+{
+  p.add("rho", rho, "air density of the Bernoulli flow [kg/m^3]");
+  p.add("bernoulli.separation_ratio", separation_ratio,
+        "flow separates where the gap reaches this multiple of its minimum");
+  p.add("bernoulli.viscosity", viscosity,
+        "--fold elastic: air viscosity of the Poiseuille loss [Pa s]");
+  p.add("bernoulli.y_floor", y_floor,
+        "--fold elastic: smallest gap the flow sees [m]");
+  p.add("bernoulli.separation_min_gap", y_sep_min,
+        "--fold elastic: the flow separates at separation_ratio times the "
+        "smallest gap or this gap, the larger [m]");
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::BernoulliGlottisParameters::validate() const
+{
+  fsai::require_positive("--rho", rho);
+  fsai::require(separation_ratio >= 1, "--bernoulli.separation_ratio", ">= 1",
+                separation_ratio);
+  fsai::require_positive("--bernoulli.viscosity", viscosity);
+  fsai::require_positive("--bernoulli.y_floor", y_floor);
+  fsai::require(y_sep_min >= 0, "--bernoulli.separation_min_gap", ">= 0",
+                y_sep_min);
+}
+//-----------------------------------------------------------------------------
 
 fsai::glottis::BernoulliGlottis::BernoulliGlottis(
     const FoldProfile& profile, const TwoDofParameters& vf,

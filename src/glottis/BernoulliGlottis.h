@@ -13,6 +13,11 @@
 #include "TwoDofFold.h"
 #include <vector>
 
+namespace fsai::common
+{
+class Parameters;
+}
+
 namespace fsai::glottis
 {
 struct BernoulliGlottisParameters
@@ -29,6 +34,11 @@ struct BernoulliGlottisParameters
   double dt = 1e-5;         ///< time step [s]
   double tol = 1e-10;       ///< fixed point: |Δq| relative to |q| + 1e-6
   int max_iterations = 50;
+
+  /// The flow model's options (--rho, --bernoulli.*); p_sub, p_sup and dt
+  /// are the scene's
+  void bind(fsai::common::Parameters& p);
+  void validate() const;
 };
 
 /// Linear stability of the fold's static equilibrium under the
@@ -57,6 +67,7 @@ public:
   /// Advance one step; throws std::runtime_error if the fixed point fails
   Sample step() override;
   const TwoDofFold& fold() const { return _fold; }
+  const TwoDofFold* two_dof_fold() const override { return &_fold; }
   double time() const override { return _t; }
   void checkpoint(nlohmann::json& scalars,
                   std::optional<io::RankState>& fields) override;

@@ -84,6 +84,7 @@ public:
   const std::vector<double>& surface_load() const { return _p; }
   /// The flow side: mesh, flow, mesh motion, output fields
   const FlowChannel& channel() const { return _channel; }
+  const FlowChannel* flow_channel() const override { return &_channel; }
   /// After a failed step: flow and mesh back at the last accepted step,
   /// whose fields (flow, porous indicator, mesh displacement) are written to
   /// the XDMF file `path`

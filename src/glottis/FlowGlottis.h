@@ -150,6 +150,8 @@ public:
   const TwoDofFold& fold() const { return _fold; }
   /// The flow side: mesh, flow, mesh motion, output fields
   const FlowChannel& channel() const { return _channel; }
+  const TwoDofFold* two_dof_fold() const override { return &_fold; }
+  const FlowChannel* flow_channel() const override { return &_channel; }
 
 private:
   /// The coupling map: fold state guess → new fold state

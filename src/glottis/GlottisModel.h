@@ -23,6 +23,8 @@ class RunSummary;
 namespace fsai::glottis
 {
 class ElasticFold;
+class FlowChannel;
+class TwoDofFold;
 
 class GlottisModel
 {
@@ -57,6 +59,10 @@ public:
   virtual std::vector<io::TimeSeriesWriter::Field> fold_fields() { return {}; }
   /// The elastic fold of the elastic variants (nullptr for the 2-DOF fold)
   virtual ElasticFold* elastic_fold() { return nullptr; }
+  /// The 2-DOF fold of the 2-DOF variants (nullptr for the elastic fold)
+  virtual const TwoDofFold* two_dof_fold() const { return nullptr; }
+  /// The FE flow's channel (nullptr for the Bernoulli flow)
+  virtual const FlowChannel* flow_channel() const { return nullptr; }
   /// Log the fold (mass, stiffness or dofs, in-vacuo modes) and the flow
   /// (unknowns), and put them in the summary
   virtual void describe(io::RunSummary& summary) = 0;

@@ -40,16 +40,7 @@ void fsai::glottis::GlottisSceneParameters::bind(fsai::common::Parameters& p)
   p.add("p-sub", p_sub, "subglottal pressure [Pa]");
   p.add("duration", duration, "simulated time [s]");
   p.add("dt", dt, "time step [s]");
-  p.add("rho", rho, "air density [kg/m^3]");
-  p.add("bernoulli.separation_ratio", separation_ratio,
-        "flow separates where the gap reaches this multiple of its minimum");
-  p.add("bernoulli.viscosity", viscosity,
-        "--fold elastic: air viscosity of the Poiseuille loss [Pa s]");
-  p.add("bernoulli.y_floor", y_floor,
-        "--fold elastic: smallest gap the flow sees [m]");
-  p.add("bernoulli.separation_min_gap", y_sep_min,
-        "--fold elastic: the flow separates at separation_ratio times the "
-        "smallest gap or this gap, the larger [m]");
+  bernoulli.bind(p);
   p.add("stats_from", stats_from,
         "limit-cycle statistics over t >= stats_from * duration");
   p.add("write_every", write_every, "fe: XDMF output every N steps (0: none)");
@@ -73,13 +64,7 @@ void fsai::glottis::GlottisSceneParameters::validate() const
   fsai::require_positive("--duration", duration);
   fsai::require_positive("--dt", dt);
   fsai::require(dt <= duration, "--dt", "<= --duration", dt);
-  fsai::require_positive("--rho", rho);
-  fsai::require(separation_ratio >= 1, "--bernoulli.separation_ratio", ">= 1",
-                separation_ratio);
-  fsai::require_positive("--bernoulli.viscosity", viscosity);
-  fsai::require_positive("--bernoulli.y_floor", y_floor);
-  fsai::require(y_sep_min >= 0, "--bernoulli.separation_min_gap", ">= 0",
-                y_sep_min);
+  bernoulli.validate();
   fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
   run.validate();
   fsai::require(replay.empty() or flow == "fe", "--replay",
@@ -136,13 +121,8 @@ void fsai::glottis::GlottisScene::validate(const fsai::common::Parameters& p)
 fsai::glottis::BernoulliGlottisParameters
 fsai::glottis::GlottisScene::bernoulli() const
 {
-  BernoulliGlottisParameters bp;
+  BernoulliGlottisParameters bp = scene.bernoulli;
   bp.p_sub = scene.p_sub;
-  bp.rho = scene.rho;
-  bp.separation_ratio = scene.separation_ratio;
-  bp.viscosity = scene.viscosity;
-  bp.y_floor = scene.y_floor;
-  bp.y_sep_min = scene.y_sep_min;
   bp.dt = scene.dt;
   return bp;
 }
@@ -152,19 +132,29 @@ fsai::glottis::GlottisScene::make_model(MPI_Comm comm,
                                         const FoldProfile& profile,
                                         std::size_t rows_kept) const
 {
-  const std::string log = scene.output + "/coupling.csv";
-  const bool fe = scene.flow == "fe";
-  if (scene.fold == "elastic" and fe)
+  return make_glottis(comm, profile, scene.flow, scene.fold, setup, elastic,
+                      bernoulli(), scene.ramp, scene.output + "/coupling.csv",
+                      rows_kept);
+}
+//-----------------------------------------------------------------------------
+std::unique_ptr<fsai::glottis::GlottisModel> fsai::glottis::make_glottis(
+    MPI_Comm comm, const FoldProfile& profile, const std::string& flow,
+    const std::string& fold, const FlowGlottisSetup& setup,
+    const ElasticFoldParameters& elastic, const BernoulliGlottisParameters& bp,
+    double ramp, const std::string& log, std::size_t rows_kept)
+{
+  const bool fe = flow == "fe";
+  if (fold == "elastic" and fe)
   {
     return std::make_unique<ElasticFlowGlottis>(
         comm, profile, elastic, setup.contact, setup.fe, setup.fluid, setup.ale,
         setup.coupling, log, rows_kept);
   }
-  if (scene.fold == "elastic")
+  if (fold == "elastic")
   {
     return std::make_unique<ElasticBernoulliGlottis>(
-        comm, profile, elastic, setup.contact, bernoulli(), scene.ramp,
-        setup.coupling, log, rows_kept);
+        comm, profile, elastic, setup.contact, bp, ramp, setup.coupling, log,
+        rows_kept);
   }
   if (fe)
   {
@@ -173,7 +163,7 @@ fsai::glottis::GlottisScene::make_model(MPI_Comm comm,
         setup.ale, setup.coupling, log, rows_kept);
   }
   return std::make_unique<BernoulliGlottis>(profile, setup.fold, setup.contact,
-                                            bernoulli());
+                                            bp);
 }
 //-----------------------------------------------------------------------------
 void fsai::glottis::onset_sweep(MPI_Comm comm, const GlottisScene& s,

@@ -35,13 +35,9 @@ struct GlottisSceneParameters
   double p_sub = 1200;    ///< [Pa]: normal-to-loud speech (0.5–2 kPa)
   double duration = 0.25; ///< [s]
   double dt = 2e-5;       ///< [s]
-  double rho = 1.2;       ///< [kg/m³]
-  double separation_ratio = 1.2;
-  double viscosity = 1.8e-5; ///< [Pa s]
-  double y_floor = 0.2e-6;   ///< [m]
-  double y_sep_min = 20e-6;  ///< [m]
-  double stats_from = 0.5;   ///< statistics over t ≥ stats_from · duration
-  int write_every = 50;      ///< XDMF every N steps (0: none)
+  BernoulliGlottisParameters bernoulli; ///< --flow bernoulli's options
+  double stats_from = 0.5; ///< statistics over t ≥ stats_from · duration
+  int write_every = 50;    ///< XDMF every N steps (0: none)
   /// --fold elastic: fold_surface.csv every N steps (0: none)
   int surface_every = 0;
   std::vector<double> onset_sweep; ///< p_sub values of the stability sweep
@@ -71,6 +67,16 @@ struct GlottisScene
                                            const FoldProfile& profile,
                                            std::size_t rows_kept) const;
 };
+
+/// The glottis variant `flow` (fe, bernoulli) × `fold` (2dof, static,
+/// elastic), its coupling log `coupling_csv` continued after `rows_kept`
+/// rows on a restart; `ramp` the p_sub ramp of the elastic Bernoulli variant
+std::unique_ptr<GlottisModel>
+make_glottis(MPI_Comm comm, const FoldProfile& profile, const std::string& flow,
+             const std::string& fold, const FlowGlottisSetup& setup,
+             const ElasticFoldParameters& elastic,
+             const BernoulliGlottisParameters& bernoulli, double ramp,
+             const std::string& coupling_csv, std::size_t rows_kept);
 
 /// --onset_sweep: linear stability of the reduced model at each p_sub
 /// (printed and written to DIR/onset.csv)

@@ -108,7 +108,7 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
   vg.validate();
   const auto& g = profile.geometry();
   const double H = g.half_height, T = g.fold_length, x0 = -g.inlet_length,
-               x1 = T + g.outlet_length, xL = T + tract.length(), R = vg.radius,
+               x1 = T + vg.channel, xL = T + tract.length(), R = vg.radius,
                Rl = R + vg.layer;
   // Planar half-width of the tract at tract coordinate s
   auto r = [&](double s) { return 0.5 * tract.area_at(s, true) / g.depth; };
@@ -117,6 +117,8 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
                 "larger than the mouth half-width", R);
   fsai::require(vg.h_fold <= 0.5 * g.rest_gap, "--voice.h_fold",
                 "<= half the rest gap", vg.h_fold);
+  fsai::require(vg.channel > 0 or r(0) < 0.9 * H, "tract area at the glottis",
+                "a half-width below 0.9 of the channel's half-height", r(0));
 
   // Mesh size: the callback is the only size source (fine at the fold,
   // several cells across every tract section, h elsewhere)
@@ -129,7 +131,7 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
     double s = std::min(vg.h, vg.h_fold + vg.growth * std::sqrt(d2));
     if (x >= x1 - 2 * H and x <= xL)
     {
-      const double sx = std::clamp(x - T, g.outlet_length, tract.length());
+      const double sx = std::clamp(x - T, vg.channel, tract.length());
       s = std::min(s, std::max(vg.h_fold, r(sx) / vg.cells_across));
     }
     else if (x > xL)
@@ -155,11 +157,13 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
         for (std::size_t k = tract.size(); k-- > 0;)
         {
           const double s = tract.x_centre(k);
-          if (s > g.outlet_length + 1e-4 and s < tract.length() - 1e-4)
+          if (s > vg.channel + 1e-4 and s < tract.length() - 1e-4)
             tract_pts.push_back(geo::addPoint(T + s, r(s), 0));
         }
-        tract_pts.push_back(geo::addPoint(x1, r(g.outlet_length), 0));
-        const int p_out1 = geo::addPoint(x1, H, 0);
+        tract_pts.push_back(geo::addPoint(x1, r(vg.channel), 0));
+        // The step up to the channel's wall, or, for a tract from the
+        // glottis (channel 0), to the fold's superior attachment (T, H)
+        const int p_out1 = vg.channel > 0 ? geo::addPoint(x1, H, 0) : -1;
         const std::vector<int> spline = add_fold_points(profile);
         const int p_sup = spline.front(), p_inf = spline.back();
         const int p_in1 = geo::addPoint(x0, H, 0);
@@ -170,8 +174,13 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
         std::vector<int> walls = {baffle};
         for (std::size_t i = 0; i + 1 < tract_pts.size(); ++i)
           walls.push_back(geo::addLine(tract_pts[i], tract_pts[i + 1]));
-        walls.push_back(geo::addLine(tract_pts.back(), p_out1));
-        walls.push_back(geo::addLine(p_out1, p_sup));
+        if (p_out1 > 0)
+        {
+          walls.push_back(geo::addLine(tract_pts.back(), p_out1));
+          walls.push_back(geo::addLine(p_out1, p_sup));
+        }
+        else
+          walls.push_back(geo::addLine(tract_pts.back(), p_sup));
         const int fold = geo::addSpline(spline);
         const int wall_inf = geo::addLine(p_inf, p_in1);
         walls.push_back(wall_inf);

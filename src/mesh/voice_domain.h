@@ -30,6 +30,10 @@ struct VoiceDomainGeometry
   double h_fold = 0.1e-3;    ///< size on the fold surface [m]
   double growth = 0.3;       ///< size growth with the distance to the fold
   double cells_across = 2.0; ///< minimum cells across a tract half-width
+  /// Length of the tract's first part that is the flow domain's channel
+  /// (half-height H; set by the scene) [m]: 0 when the tract is the
+  /// vowel's from the glottis on
+  double channel = 0.0;
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };

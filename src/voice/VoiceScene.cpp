@@ -1,5 +1,6 @@
 // Copyright (C) 2026 fsai developers
 #include "VoiceScene.h"
+#include "voice_measures.h"
 #include <acoustics/sound.h>
 #include <acoustics/spectrum.h>
 #include <acoustics/tube_model.h>
@@ -9,6 +10,7 @@
 #include <common/log.h>
 #include <common/timer.h>
 #include <fmt/ranges.h>
+#include <glottis/GlottisScene.h>
 #include <io/CsvWriter.h>
 #include <io/RunSummary.h>
 
@@ -18,12 +20,29 @@ namespace ac = fsai::acoustics;
 void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
 {
   p.add("output", output, "output folder");
+  p.add_choice("flow", flow, {"fe", "bernoulli"},
+               "glottal flow: fe (ALE Navier-Stokes, minutes) or bernoulli "
+               "(quasi-steady 1D, milliseconds)");
+  p.add_choice("acoustics", acoustics, {"fe", "1d"},
+               "sound: fe (wave equation on the planar tract and radiation "
+               "region) or 1d (the vowel's tract as a transmission line)");
+  p.add_choice("fold", fold, {"2dof", "elastic"},
+               "vocal fold: 2dof (rigid, two modes) or elastic (plane-strain "
+               "FE fold, --elastic.*)");
+  p.add("ramp", ramp,
+        "--fold elastic --flow bernoulli: p_sub ramps up over this time [s]");
   p.add_choice("vowel", vowel, {"u", "a", "i"},
                "vowel of the shipped area functions (meshes/vowel_*.csv)");
   p.add("area-function", area_function,
         "area-function CSV (x_cm,area_cm2); overrides --vowel");
   p.add_choice("tract", tract, {"vowel", "tube"},
                "vocal tract: the vowel's, or a short straight tube");
+  p.add_choice("voice.tract_start", tract_start, {"glottis", "outlet"},
+               "--acoustics fe: the vowel's area function starts at the "
+               "glottis (the acoustic tract is the vowel's, the flow "
+               "domain's wide channel overlaps it) or after the flow "
+               "domain's outlet channel (which then replaces the tract's "
+               "first 40 mm: the vowel's formants move, [a] by -48 % F1)");
   p.add("tube.length", tube_length, "--tract tube: length [m]");
   p.add("tube.area", tube_area, "--tract tube: area [m^2]");
   p.add("p-sub", p_sub, "subglottal pressure [Pa]");
@@ -36,7 +55,7 @@ void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
                "or an absorbing layer");
   p.add("layer", layer, "absorbing-layer thickness for --radiation pml [m]");
   p.add("voice.yielding_walls", yielding_walls,
-        "supraglottal tract walls yield (--acoustics.wall_*; false: "
+        "supraglottal tract walls yield (--wave.wall_*; false: "
         "rigid walls, resonances damped by radiation only)");
   p.add_choice("voice.subglottal", subglottal, {"absorbing", "hard"},
                "subglottal end of the acoustic domain: plane-wave "
@@ -47,10 +66,20 @@ void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
         "statistics and sound analysis over t >= stats_from * duration");
   p.add("write_every", write_every, "XDMF output every N steps (0: none)");
   p.add("wav_rate", wav_rate, "sample rate of sound.wav [Hz]");
+  p.add("reanalyse", reanalyse,
+        "no run: analyse the series.csv in --output again with this "
+        "build's analysis (summary into reanalysis.json, the run's own "
+        "summary.json kept)");
+  p.add("report", report,
+        "draw report.png (matplotlib, about 1 s; false in sweeps of the "
+        "reduced voice)");
   p.add("check-result", check_result,
         "fail unless the sound is finite and audible (SPL > 40 dB), its "
         "f0 matches the fold's within --check.f0_tolerance and the fold "
         "f0 is in the male range 85-155 Hz");
+  p.add("check.formant_tolerance", check_formant_tolerance,
+        "--check-result: the sound's F1 and F2 (the voice measures') within "
+        "this relative tolerance of the tract's (0: not checked)");
   p.add("check.f0_tolerance", check_f0_tolerance,
         "relative tolerance of --check-result on the sound's f0 (0: not "
         "checked)");
@@ -59,6 +88,11 @@ void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
 //-----------------------------------------------------------------------------
 void fsai::voice::VoiceParameters::validate() const
 {
+  fsai::require(!(acoustics == "fe" and fold == "elastic"), "--fold elastic",
+                "used with --acoustics 1d (the FE sound's sources move "
+                "with the 2-DOF fold's rigid motion)",
+                fold);
+  fsai::require(ramp >= 0, "--ramp", ">= 0", ramp);
   fsai::require_positive("--p-sub", p_sub);
   fsai::require_positive("--duration", duration);
   fsai::require_positive("--dt", dt);
@@ -68,6 +102,8 @@ void fsai::voice::VoiceParameters::validate() const
   fsai::require_positive("--layer", layer);
   fsai::require_positive("--mic_distance", mic_distance);
   fsai::require_range("--stats_from", stats_from, 0.0, 0.95);
+  fsai::require(check_formant_tolerance >= 0, "--check.formant_tolerance",
+                ">= 0", check_formant_tolerance);
   fsai::require(write_every >= 0, "--write_every", ">= 0", write_every);
   fsai::require(wav_rate == 44100 or wav_rate == 48000, "--wav_rate",
                 "44100 or 48000", wav_rate);
@@ -112,6 +148,8 @@ void fsai::voice::VoiceScene::bind(fsai::common::Parameters& p)
   voice.bind(p);
   source.bind(p);
   glottis.bind(p);
+  bernoulli.bind(p);
+  elastic.bind(p);
   wave.bind(p);
   domain.bind(p);
 }
@@ -144,14 +182,32 @@ void fsai::voice::VoiceScene::validate()
   voice.validate();
   source.validate();
   glottis.validate(voice.p_sub, voice.dt);
+  bernoulli.validate();
+  bernoulli.p_sub = voice.p_sub;
+  bernoulli.dt = voice.dt;
+  elastic.validate();
   wave.validate();
   domain.layer = voice.radiation == "pml" ? voice.layer : 0.0;
+  domain.channel
+      = voice.tract_start == "outlet" ? glottis.geometry.outlet_length : 0.0;
   domain.validate();
-  fsai::require(voice.mic_distance < domain.radius, "--mic_distance",
-                "inside the radiation region (< --voice.radius)",
+  fsai::require(voice.acoustics == "1d" or voice.mic_distance < domain.radius,
+                "--mic_distance",
+                "inside the radiation region (< --voice.radius) with "
+                "--acoustics fe",
                 voice.mic_distance);
   if (!voice.run.restart.empty())
     voice.output = voice.run.restart; // continue in the run's own folder
+}
+//-----------------------------------------------------------------------------
+std::unique_ptr<fsai::glottis::GlottisModel>
+fsai::voice::VoiceScene::make_glottis(MPI_Comm comm,
+                                      const glottis::FoldProfile& profile,
+                                      std::size_t rows_kept) const
+{
+  return fsai::glottis::make_glottis(comm, profile, voice.flow, voice.fold,
+                                     glottis, elastic, bernoulli, voice.ramp,
+                                     voice.output + "/coupling.csv", rows_kept);
 }
 //-----------------------------------------------------------------------------
 fsai::voice::VoiceTract
@@ -172,7 +228,11 @@ fsai::voice::make_tract(const VoiceScene& s,
             : mesh::read_area_function(vp.area_function.empty()
                                            ? mesh::vowel_file(vp.vowel)
                                            : vp.area_function);
-  out.area = mesh::voice_tract(vowel, profile);
+  // The 1D acoustics sound in the vowel's own tract; the FE acoustics in
+  // the flow domain's channel continued by the vowel's tract
+  out.area = vp.acoustics == "1d" or vp.tract_start == "glottis"
+                 ? vowel
+                 : mesh::voice_tract(vowel, profile);
   // Same walls as the FE model: the planar model's two walls of depth L_g
   // per unit length
   ac::TubeWall wall1d;
@@ -181,6 +241,8 @@ fsai::voice::make_tract(const VoiceScene& s,
     wall1d = {wave.wall_mass, wave.wall_resistance, wave.wall_stiffness,
               geo.depth};
   }
+  out.wall = wall1d;
+  fsai::common::ScopedTimer timer("demo: tract formants (1D)");
   const mesh::AreaFunction tract1d = mesh::resample(out.area, true, 5e-4);
   for (const auto& r : ac::tube_resonances(tract1d, 5000.0, wave.c0, wave.rho0,
                                            ac::LipEnd::flanged, -1.0, wall1d))
@@ -196,12 +258,24 @@ fsai::voice::make_tract(const VoiceScene& s,
   // which raises F1 above the closed-glottis value
   ac::GlottalBranch branch{mesh::voice_subglottal(profile),
                            vp.subglottal == "absorbing"};
-  for (const auto& r :
-       ac::tube_resonances(tract1d, 5000.0, wave.c0, wave.rho0,
-                           ac::LipEnd::flanged, -1.0, wall1d, branch))
+  for (double f = 10.0; f <= 5000.0; f += 10.0)
   {
-    if (out.domain_formants.size() < 4)
-      out.domain_formants.push_back(r.f);
+    const auto r = ac::tube_response(tract1d, f, wave.c0, wave.rho0,
+                                     ac::LipEnd::flanged, -1.0, wall1d);
+    out.response_f.push_back(f);
+    out.response_db.push_back(20 * std::log10(std::abs(r.h_lips)));
+  }
+  if (vp.acoustics == "1d") // the line's glottal end is the flow source
+    out.domain_formants = out.formants;
+  else
+  {
+    for (const auto& r :
+         ac::tube_resonances(tract1d, 5000.0, wave.c0, wave.rho0,
+                             ac::LipEnd::flanged, -1.0, wall1d, branch))
+    {
+      if (out.domain_formants.size() < 4)
+        out.domain_formants.push_back(r.f);
+    }
   }
   fsai::log::info("tract: {} ({:.2f} cm, {} walls); transfer-function "
                   "formants (1D, flanged lips) {::.0f} Hz, bandwidths "
@@ -241,8 +315,7 @@ fsai::voice::Sound fsai::voice::make_sound(MPI_Comm comm, const VoiceScene& s,
     // The tract's walls from the fold's superior attachment to the lips,
     // as in the 1D model (not the subglottal duct, the baffle or the step
     // where the channel meets the vowel's tract), A3
-    const double x0 = geo.fold_length,
-                 x_step = geo.fold_length + geo.outlet_length,
+    const double x0 = geo.fold_length, x_step = geo.fold_length + vg.channel,
                  x_end = geo.fold_length + tract.area.length();
     wb.yielding = am.facets_where("wall",
                                   [&](const double* x)
@@ -309,6 +382,36 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
     formants = ac::lpc_formants(voiced, vp.dt);
   }
   const double spl = ac::spl_db(mic);
+  // The measures a voice scientist reads (A10), over the same window
+  std::vector<double> q_window;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t0)
+      q_window.push_back(Q[i]);
+  const auto fm = glottal_flow_measures(q_window, vp.dt);
+  // The sound leaves the glottis and reaches the microphone after the
+  // tract's length and the microphone's distance
+  const double delay = (tract.area.length() + vp.mic_distance) / s.wave.c0;
+  // Closed-phase analysis needs a source-free closed phase. The 1D tract
+  // has one (Q = 0 is its only source, A9); the FE sound does not: the
+  // fold's wall keeps moving (A2), the decaying jet's ρ0 v v stays (A1),
+  // and the acoustic slit keeps g_min (A5). There it gave [u] F1/F2 −12 /
+  // −17 % of the tract's, the periodic part +4.0 / +0.2 % (full voice,
+  // 1200 Pa, docs/voice.md)
+  const std::vector<std::array<double, 2>> no_closed;
+  const auto sm
+      = sound_measures(mic, vp.dt, fm.boundaries,
+                       vp.acoustics == "1d" ? fm.closed : no_closed, delay);
+  summary.set("voice", voice_json(fm, sm, vp.mic_distance));
+  fsai::log::info("voice: f0 {:.2f} Hz, jitter {:.3f} %, shimmer {:.3f} %, "
+                  "HNR {:.1f} dB; flow peak {:.3f} l/s, mean {:.3f} l/s, OQ "
+                  "{:.3f}, SQ {:.2f}, MFDR {:.0f} l/s², NAQ {:.3f}; H1-H2 "
+                  "{:.1f} dB, SPL {:.1f} dB at {:.2f} m; formants ({}) "
+                  "{::.0f} Hz, bandwidths {::.0f} Hz",
+                  fm.f0_hz, fm.jitter_pct, sm.shimmer_pct, sm.hnr_db,
+                  1e3 * fm.q_peak, 1e3 * fm.q_mean, fm.open_quotient,
+                  fm.speed_quotient, 1e3 * fm.mfdr, fm.naq, sm.h1_h2_db,
+                  sm.spl_db, vp.mic_distance, sm.formant_method, sm.formants_hz,
+                  sm.bandwidths_hz);
   auto errors = [&](const std::vector<double>& ref)
   {
     std::vector<double> e;
@@ -338,6 +441,12 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
     for (std::size_t i = 1; i < f.size() and f[i] <= 5000.0; ++i)
       sc.row({f[i], 20 * std::log10(std::max(A[i], 1e-30) / 20e-6)});
   }
+  {
+    io::CsvWriter tc(comm, vp.output + "/tract_response.csv",
+                     {"f_hz", "level_db"});
+    for (std::size_t i = 0; i < tract.response_f.size(); ++i)
+      tc.row({tract.response_f[i], tract.response_db[i]});
+  }
   const std::string wav = vp.output + "/sound.wav";
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -359,7 +468,7 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
   summary.set("cycles", cs.cycles);
   summary.set("closes_every_cycle", cs.closes_every_cycle);
 
-  return {f0, cs.f0_hz, spl};
+  return {f0, cs.f0_hz, spl, sm.formants_hz, tract.formants};
 }
 //-----------------------------------------------------------------------------
 void fsai::voice::check_voice(const VoiceScene& s, const VoiceMeasures& m)
@@ -379,5 +488,17 @@ void fsai::voice::check_voice(const VoiceScene& s, const VoiceMeasures& m)
   {
     fail(fmt::format("sound f0 {} Hz vs fold f0 {} Hz (tolerance {} %)",
                      m.f0_hz, m.f0_fold_hz, 100 * vp.check_f0_tolerance));
+  }
+  for (std::size_t k = 0; vp.check_formant_tolerance > 0 and k < 2; ++k)
+  {
+    if (k >= m.formants_hz.size() or k >= m.tract_formants_hz.size()
+        or !(std::abs(m.formants_hz[k] - m.tract_formants_hz[k])
+             <= vp.check_formant_tolerance * m.tract_formants_hz[k]))
+    {
+      fail(fmt::format("sound formants {} Hz vs the tract's {} Hz: F{} "
+                       "not within {} %",
+                       m.formants_hz, m.tract_formants_hz, k + 1,
+                       100 * vp.check_formant_tolerance));
+    }
   }
 }

@@ -7,6 +7,9 @@
 #pragma once
 #include "VoiceSource.h"
 #include <acoustics/WaveSolver.h>
+#include <acoustics/tube_model.h>
+#include <glottis/BernoulliGlottis.h>
+#include <glottis/ElasticFold.h>
 #include <glottis/FlowGlottis.h>
 #include <glottis/waveform.h>
 #include <io/Checkpointer.h>
@@ -32,9 +35,20 @@ namespace fsai::voice
 struct VoiceParameters
 {
   std::string output = "results/fsai_demo";
+  /// The fidelity (docs/voice.md, "Three fidelities"): flow fe|bernoulli,
+  /// acoustics fe|1d, fold 2dof|elastic
+  std::string flow = "fe";
+  std::string acoustics = "fe";
+  std::string fold = "2dof";
+  double ramp = 5e-3; ///< --fold elastic --flow bernoulli: p_sub ramp [s]
   std::string vowel = "u";
   std::string area_function; ///< overrides vowel
   std::string tract = "vowel";
+  /// --acoustics fe: the vowel's area function from the glottis on (the
+  /// acoustic tract is the vowel's; the flow domain's channel overlaps
+  /// it) or from the flow domain's outlet (its channel, 2.88 cm², replaces
+  /// the tract's first 40 mm)
+  std::string tract_start = "glottis";
   double tube_length = 0.04; ///< --tract tube [m]
   double tube_area = 3e-4;   ///< [m²]
   double p_sub = 1200;       ///< [Pa]
@@ -50,7 +64,12 @@ struct VoiceParameters
   int write_every = 100;
   int wav_rate = 44100;
   bool check_result = false;
-  double check_f0_tolerance = 0.01; ///< relative
+  bool report = true; ///< draw report.png (Python, about a second)
+  /// Analyse the series.csv of the run in --output again (no time loop):
+  /// the voice measures into reanalysis.json
+  bool reanalyse = false;
+  double check_f0_tolerance = 0.01;   ///< relative
+  double check_formant_tolerance = 0; ///< relative, F1 and F2 (0: none)
   io::RestartOptions run;
 
   void bind(fsai::common::Parameters& p);
@@ -64,6 +83,8 @@ struct VoiceScene
   VoiceParameters voice;
   VoiceSourceParameters source;
   glottis::FlowGlottisSetup glottis;
+  glottis::BernoulliGlottisParameters bernoulli;
+  glottis::ElasticFoldParameters elastic;
   acoustics::WaveParameters wave;
   mesh::VoiceDomainGeometry domain;
 
@@ -73,17 +94,25 @@ struct VoiceScene
   /// with it still overrides them
   void apply_quick(const std::vector<std::string>& args);
   void validate();
+  /// The glottis (--flow × --fold), its coupling log continued after
+  /// `rows_kept` rows on a restart
+  std::unique_ptr<glottis::GlottisModel>
+  make_glottis(MPI_Comm comm, const glottis::FoldProfile& profile,
+               std::size_t rows_kept) const;
 };
 
-/// The tract the voice sounds in: the vowel's area function (or a tube)
-/// with its first part replaced by the flow domain's channel, and its 1D
-/// transfer-function formants (A7)
+/// The tract the voice sounds in: the vowel's area function (or a tube),
+/// for the FE acoustics with its first part replaced by the flow domain's
+/// channel, and its 1D transfer-function formants (A7) with the walls
 struct VoiceTract
 {
   std::string label;
   mesh::AreaFunction area;
+  acoustics::TubeWall wall;
   std::vector<double> formants, bandwidths; ///< closed glottis
   std::vector<double> domain_formants;      ///< the acoustic domain as built
+  /// |P_lips/U_g| of the closed-glottis 1D model every 10 Hz [Hz, dB]
+  std::vector<double> response_f, response_db;
 };
 VoiceTract make_tract(const VoiceScene& s, const glottis::FoldProfile& profile);
 
@@ -102,6 +131,7 @@ Sound make_sound(MPI_Comm comm, const VoiceScene& s,
 struct VoiceMeasures
 {
   double f0_hz, f0_fold_hz, spl_db;
+  std::vector<double> formants_hz, tract_formants_hz;
 };
 /// The fold's cycle and the sound's analysis over t ≥ stats_from·duration:
 /// summary keys, spectrum.csv, sound.wav

@@ -74,7 +74,7 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
                                       const VoiceSourceParameters& p,
                                       const glottis::FlowGlottisSetup& setup,
                                       const glottis::FoldProfile& profile,
-                                      const glottis::FlowGlottis& flow,
+                                      const glottis::FlowChannel* channel,
                                       const mesh::MeshData& am,
                                       acoustics::WaveSolver& sound, double dt)
     : _par(p), _profile(profile), _sound(sound), _dt(dt),
@@ -136,10 +136,15 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
   // Lighthill's source (A1): transfer in the reference configuration and
   // its taper χ, 1 inside the flow domain, cos² ramps to 0 towards the
   // inlet and before the outlet
-  _transfer = std::make_unique<acoustics::FlowSource>(
-      comm, *flow.channel().flow().velocity_space(),
-      flow.channel().reference_coordinates(),
-      *sound.flow_velocity().function_space());
+  if (!channel)
+    _par.lighthill = false;
+  else
+  {
+    _transfer = std::make_unique<acoustics::FlowSource>(
+        comm, *channel->flow().velocity_space(),
+        channel->reference_coordinates(),
+        *sound.flow_velocity().function_space());
+  }
   {
     auto ramp = [](double s) // 0 → 0, 1 → 1
     {
@@ -173,23 +178,24 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
       sound.flow_velocity().function_space());
 }
 //-----------------------------------------------------------------------------
-void fsai::voice::VoiceSource::start(const glottis::FlowGlottis& flow,
+void fsai::voice::VoiceSource::start(const glottis::TwoDofFold& fold,
                                      double q_last)
 {
-  _qdot_prev = flow.fold().qdot();
+  _qdot_prev = fold.qdot();
   _q_monopole = q_last;
 }
 //-----------------------------------------------------------------------------
-void fsai::voice::VoiceSource::apply(const glottis::FlowGlottis& flow,
+void fsai::voice::VoiceSource::apply(const glottis::TwoDofFold& fold,
+                                     const glottis::FlowChannel* channel,
                                      const glottis::Sample& s)
 {
-  if (_par.lighthill)
+  if (_par.lighthill and channel)
   {
     // The source at the step's midpoint, v = (v_n + v_{n+1})/2 (the
     // trapezoidal rule's own load): the flow's step-to-step (−1)^n
     // content, which the undamped Newmark scheme would store in unresolved
     // high-frequency modes, is removed
-    _transfer->transfer(*flow.channel().flow().velocity(), *_v_new);
+    _transfer->transfer(*channel->flow().velocity(), *_v_new);
     auto vs = _sound.flow_velocity().x()->mutable_array();
     const auto vn = _v_new->x()->array();
     auto vo = _v_old->x()->mutable_array();
@@ -202,7 +208,7 @@ void fsai::voice::VoiceSource::apply(const glottis::FlowGlottis& flow,
   std::vector<std::array<double, 2>> now;
   if (_par.glottal_slit)
   {
-    now = glottis::moved_surface(_profile, flow.fold().motion());
+    now = glottis::moved_surface(_profile, fold.motion());
     set_slit_law(now, s);
   }
   if (_par.monopole)
@@ -220,7 +226,7 @@ void fsai::voice::VoiceSource::apply(const glottis::FlowGlottis& flow,
     _sound.set_volume_source_rate(_monopole[0], dQ);
     _sound.set_volume_source_rate(_monopole[1], -dQ);
   }
-  set_wall_acceleration(flow, now);
+  set_wall_acceleration(fold, now);
 }
 //-----------------------------------------------------------------------------
 void fsai::voice::VoiceSource::set_slit_law(
@@ -258,7 +264,7 @@ double fsai::voice::VoiceSource::open_fraction(
 }
 //-----------------------------------------------------------------------------
 void fsai::voice::VoiceSource::set_wall_acceleration(
-    const glottis::FlowGlottis& flow,
+    const glottis::TwoDofFold& fold,
     const std::vector<std::array<double, 2>>& surface)
 {
   // Tapered rigid motion (as the flow boundary), a = w (∂u/∂h q̈_h + ∂u/∂φ
@@ -266,7 +272,6 @@ void fsai::voice::VoiceSource::set_wall_acceleration(
   // (q̈_n + q̈_{n+1})/2. Newmark's end-of-step q̈ carries an undamped (−1)^n
   // part whenever the load jumps (contact, porous switching); the mean is
   // free of it (the trapezoidal rule's own acceleration)
-  const auto& fold = flow.fold();
   const auto m = fold.motion();
   const std::array<double, 2> qdd = {(fold.qdot()[0] - _qdot_prev[0]) / _dt,
                                      (fold.qdot()[1] - _qdot_prev[1]) / _dt};

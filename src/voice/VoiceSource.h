@@ -58,18 +58,23 @@ class VoiceSource
 {
 public:
   /// Sets up the coupling on the acoustic domain `am` of `sound`: taper,
-  /// monopole pair, slit, fold-surface nodes (collective)
+  /// monopole pair, slit, fold-surface nodes (collective). `channel` is
+  /// the FE flow's, whose velocity gives Lighthill's source; nullptr for
+  /// the Bernoulli flow, which has no velocity field (no Lighthill source:
+  /// the monopole pair, the slit and the fold's wall carry the sound)
   VoiceSource(MPI_Comm comm, const VoiceSourceParameters& p,
               const glottis::FlowGlottisSetup& setup,
               const glottis::FoldProfile& profile,
-              const glottis::FlowGlottis& flow, const mesh::MeshData& am,
+              const glottis::FlowChannel* channel, const mesh::MeshData& am,
               acoustics::WaveSolver& sound, double dt);
 
-  /// Start (or continue after a restart) from the flow's current state;
+  /// Start (or continue after a restart) from the fold's current state;
   /// `q_last` the last converged glottal flow [m³/s]
-  void start(const glottis::FlowGlottis& flow, double q_last);
-  /// The sound's source data for the step the flow just took (`s`)
-  void apply(const glottis::FlowGlottis& flow, const glottis::Sample& s);
+  void start(const glottis::TwoDofFold& fold, double q_last);
+  /// The sound's source data for the step the flow just took (`s`) with
+  /// the fold and, for the FE flow, its channel
+  void apply(const glottis::TwoDofFold& fold,
+             const glottis::FlowChannel* channel, const glottis::Sample& s);
 
   /// The source's last velocity in a checkpoint and back
   void save(io::RankState& state) const;
@@ -78,7 +83,7 @@ public:
 private:
   void set_slit_law(const std::vector<std::array<double, 2>>& surface,
                     const glottis::Sample& s);
-  void set_wall_acceleration(const glottis::FlowGlottis& flow,
+  void set_wall_acceleration(const glottis::TwoDofFold& fold,
                              const std::vector<std::array<double, 2>>& surface);
   double open_fraction(double x,
                        const std::vector<std::array<double, 2>>& surface) const;

@@ -1,0 +1,143 @@
+// Copyright (C) 2026 fsai developers
+#include "VoiceAcoustics.h"
+#include "VoiceScene.h"
+#include "VoiceSource.h"
+#include <acoustics/TubeTract.h>
+#include <cmath>
+#include <common/errors.h>
+#include <common/timer.h>
+#include <fmt/format.h>
+#include <glottis/FlowChannel.h>
+#include <glottis/TwoDofFold.h>
+#include <io/PointProbes.h>
+#include <stdexcept>
+
+namespace
+{
+using fsai::glottis::GlottisModel;
+using fsai::glottis::Sample;
+
+/// --acoustics 1d (A9): the glottal flow drives the line; a step whose
+/// coupling did not converge has a meaningless Q (the FE path's monopole
+/// holds it too, A6), so the line sees the last converged one
+class TubeAcoustics : public fsai::voice::VoiceAcoustics
+{
+public:
+  TubeAcoustics(const fsai::mesh::AreaFunction& area,
+                const fsai::acoustics::TubeTractParameters& p, double dt)
+      : _tract(area, p, dt)
+  {
+  }
+  void start(const GlottisModel&, double q_last) override { _q = q_last; }
+  void step(const GlottisModel&, const Sample& s) override
+  {
+    fsai::common::ScopedTimer timer("demo: sound step");
+    if (s.converged)
+      _q = s.Q;
+    _tract.step(_q);
+  }
+  double p_lips() const override { return _tract.p_lips(); }
+  double p_mic() const override { return _tract.p_mic(); }
+  std::int64_t dofs() const override
+  {
+    return std::int64_t(2 * _tract.sections() + 1);
+  }
+  void checkpoint(nlohmann::json& scalars,
+                  std::optional<fsai::io::RankState>&) const override
+  {
+    scalars["tract1d"] = _tract.save();
+    scalars["tract1d_q"] = _q;
+  }
+  void restore(const nlohmann::json& checkpoint,
+               const std::vector<fsai::io::RankState>&) override
+  {
+    _tract.load(checkpoint.at("tract1d"));
+    _q = checkpoint.at("tract1d_q");
+  }
+
+private:
+  fsai::acoustics::TubeTract _tract;
+  double _q = 0;
+};
+
+/// --acoustics fe: the wave equation with VoiceSource's sources; the
+/// 2-DOF fold's rigid motion moves the slit and the fold's wall
+class FeAcoustics : public fsai::voice::VoiceAcoustics
+{
+public:
+  FeAcoustics(MPI_Comm comm, const fsai::voice::VoiceScene& s,
+              const fsai::glottis::FoldProfile& profile,
+              const fsai::voice::VoiceTract& tract, const GlottisModel& glottis)
+      : _sound(fsai::voice::make_sound(comm, s, profile, tract)),
+        _source(comm, s.source, s.glottis, profile, glottis.flow_channel(),
+                _sound.mesh, *_sound.solver, s.voice.dt),
+        _probes(_sound.mesh.mesh,
+                {{_sound.x_lips, 0.0, 0.0},
+                 {_sound.x_lips + s.voice.mic_distance, 0.0, 0.0}})
+  {
+  }
+  void start(const GlottisModel& glottis, double q_last) override
+  {
+    _source.start(fold(glottis), q_last);
+  }
+  void step(const GlottisModel& glottis, const Sample& s) override
+  {
+    fsai::common::ScopedTimer timer("demo: sound step");
+    _source.apply(fold(glottis), glottis.flow_channel(), s);
+    _sound.solver->step();
+    _p = _probes.values(*_sound.solver->pressure());
+  }
+  double p_lips() const override { return _p[0]; }
+  double p_mic() const override { return _p[1]; }
+  std::int64_t dofs() const override { return _sound.solver->dofs(); }
+  void checkpoint(nlohmann::json&,
+                  std::optional<fsai::io::RankState>& fields) const override
+  {
+    if (!fields)
+      fields.emplace();
+    _sound.solver->save(*fields, "sound.");
+    _source.save(*fields);
+  }
+  void restore(const nlohmann::json&,
+               const std::vector<fsai::io::RankState>& fields) override
+  {
+    _sound.solver->load(fields, "sound.");
+    _source.load(fields);
+  }
+  std::vector<fsai::io::TimeSeriesWriter::Field> fields() const override
+  {
+    return {_sound.solver->pressure()};
+  }
+
+private:
+  static const fsai::glottis::TwoDofFold& fold(const GlottisModel& glottis)
+  {
+    const auto* f = glottis.two_dof_fold();
+    if (!f)
+      throw std::logic_error("FE acoustics without a 2-DOF fold");
+    return *f;
+  }
+  fsai::voice::Sound _sound;
+  fsai::voice::VoiceSource _source;
+  fsai::io::PointProbes _probes;
+  std::vector<double> _p{0.0, 0.0};
+};
+} // namespace
+
+//-----------------------------------------------------------------------------
+std::unique_ptr<fsai::voice::VoiceAcoustics> fsai::voice::make_acoustics(
+    MPI_Comm comm, const VoiceScene& s, const glottis::FoldProfile& profile,
+    const VoiceTract& tract, const glottis::GlottisModel& glottis)
+{
+  if (s.voice.acoustics == "fe")
+  {
+    // VoiceScene::validate refuses --fold elastic here
+    return std::make_unique<FeAcoustics>(comm, s, profile, tract, glottis);
+  }
+  acoustics::TubeTractParameters p;
+  p.c0 = s.wave.c0;
+  p.rho0 = s.wave.rho0;
+  p.wall = tract.wall;
+  p.mic_distance = s.voice.mic_distance;
+  return std::make_unique<TubeAcoustics>(tract.area, p, s.voice.dt);
+}
