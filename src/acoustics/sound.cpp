@@ -87,13 +87,17 @@ std::vector<double> fsai::acoustics::resample(const std::vector<double>& x,
   const std::size_t n = std::size_t(std::floor(T * rate)) + 1;
   std::vector<double> y(n);
   for (std::size_t i = 0; i < n; ++i)
-  {
-    const double s = i / rate / dt;
-    const std::size_t k = std::min(std::size_t(s), z.size() - 2);
-    const double w = s - double(k);
-    y[i] = (1 - w) * z[k] + w * z[k + 1];
-  }
+    y[i] = sample_at(z, dt, i / rate);
   return y;
+}
+//-----------------------------------------------------------------------------
+double fsai::acoustics::sample_at(const std::vector<double>& x, double dt,
+                                  double t)
+{
+  const double s = t / dt;
+  const std::size_t k = std::min(std::size_t(s), x.size() - 2);
+  const double w = s - double(k);
+  return (1 - w) * x[k] + w * x[k + 1];
 }
 //-----------------------------------------------------------------------------
 double fsai::acoustics::write_wav(const std::string& path,
@@ -344,13 +348,7 @@ std::vector<double> fsai::acoustics::periodic_part(const std::vector<double>& x,
   const std::size_t n = std::max<std::size_t>(2, std::lround(T / dt));
   if (cycles < 2)
     return {};
-  auto at = [&](double t)
-  {
-    const double s = t / dt;
-    const std::size_t k = std::min(std::size_t(s), y.size() - 2);
-    const double w = s - double(k);
-    return (1 - w) * y[k] + w * y[k + 1];
-  };
+  auto at = [&](double t) { return sample_at(y, dt, t); };
   std::vector<double> mean(n, 0.0);
   for (std::size_t c = 0; c < cycles; ++c)
     for (std::size_t j = 0; j < n; ++j)

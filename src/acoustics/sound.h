@@ -18,6 +18,10 @@ namespace fsai::acoustics
 std::vector<double> lowpass(const std::vector<double>& x, double dt,
                             double f_cut, double f_width);
 
+/// x (at least two samples, every dt from t = 0) at time t in
+/// [0, dt (size − 1)], linear between samples
+double sample_at(const std::vector<double>& x, double dt, double t);
+
 /// x sampled every dt, read at `rate` Hz by linear interpolation; when
 /// that is a lower rate, x is first low-passed at 0.45 rate (transition
 /// 0.1 rate wide: anti-aliasing). Linear interpolation changes a component

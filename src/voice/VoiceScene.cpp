@@ -349,10 +349,14 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
   const auto& vp = s.voice;
   const double t0 = vp.stats_from * vp.duration;
   const auto cs = glottis::cycle_stats(t, g, Q, t0, 0.0);
-  std::vector<double> mic;
+  // The statistics window of the sound and of the glottal flow
+  std::vector<double> mic, q_window;
   for (std::size_t i = 0; i < t.size(); ++i)
     if (t[i] >= t0)
+    {
       mic.push_back(p_mic[i]);
+      q_window.push_back(Q[i]);
+    }
   // f0 search down to 60 Hz, or to two periods in a short window
   const double f0 = ac::fundamental_frequency(
       mic, vp.dt, std::max(60.0, 2.6 / (vp.dt * double(mic.size()))));
@@ -381,12 +385,7 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
       voiced.insert(voiced.end(), cycle.begin(), cycle.end());
     formants = ac::lpc_formants(voiced, vp.dt);
   }
-  const double spl = ac::spl_db(mic);
   // The measures a voice scientist reads (A10), over the same window
-  std::vector<double> q_window;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] >= t0)
-      q_window.push_back(Q[i]);
   const auto fm = glottal_flow_measures(q_window, vp.dt);
   // The sound leaves the glottis and reaches the microphone after the
   // tract's length and the microphone's distance
@@ -402,6 +401,7 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
       = sound_measures(mic, vp.dt, fm.boundaries,
                        vp.acoustics == "1d" ? fm.closed : no_closed, delay);
   summary.set("voice", voice_json(fm, sm, vp.mic_distance));
+  const double spl = sm.spl_db;
   fsai::log::info("voice: f0 {:.2f} Hz, jitter {:.3f} %, shimmer {:.3f} %, "
                   "HNR {:.1f} dB; flow peak {:.3f} l/s, mean {:.3f} l/s, OQ "
                   "{:.3f}, SQ {:.2f}, MFDR {:.0f} l/s², NAQ {:.3f}; H1-H2 "

@@ -27,15 +27,6 @@ double local_perturbation(const std::vector<double>& v)
   return 100 * d / double(v.size() - 1) / mean(v);
 }
 
-/// x at time t (linear between samples dt apart)
-double at(const std::vector<double>& x, double dt, double t)
-{
-  const double s = std::clamp(t / dt, 0.0, double(x.size() - 1));
-  const std::size_t k = std::min(std::size_t(s), x.size() - 2);
-  const double w = s - double(k);
-  return (1 - w) * x[k] + w * x[k + 1];
-}
-
 /// Time where x crosses level c between samples i and i + 1
 double crossing(const std::vector<double>& x, double dt, std::size_t i,
                 double c)
@@ -194,16 +185,19 @@ fsai::voice::sound_measures(const std::vector<double>& p, double dt,
   for (std::size_t c = 0; c < N; ++c)
     shortest = std::min(shortest, b[c + 1] - b[c]);
   const std::size_t n = std::max<std::size_t>(8, std::size_t(shortest / dt));
-  std::vector<double> m(n, 0.0);
-  double E = 0, mu = 0;
+  // Each cycle's n samples once (cycle c at [c n, (c + 1) n)), their mean
+  // removed
+  std::vector<double> cyc(N * n);
   for (std::size_t c = 0; c < N; ++c)
     for (std::size_t j = 0; j < n; ++j)
-      mu += at(p, dt, b[c] + dt * double(j));
-  mu /= double(N * n);
+      cyc[c * n + j] = ac::sample_at(p, dt, b[c] + dt * double(j));
+  const double mu = mean(cyc);
+  std::vector<double> m(n, 0.0);
+  double E = 0;
   for (std::size_t c = 0; c < N; ++c)
     for (std::size_t j = 0; j < n; ++j)
     {
-      const double v = at(p, dt, b[c] + dt * double(j)) - mu;
+      const double v = cyc[c * n + j] - mu;
       m[j] += v / double(N);
       E += v * v;
     }
