@@ -1,6 +1,9 @@
 """Helpers shared by the bench scripts."""
 import csv
+import json
 import os
+import subprocess
+import time
 
 import numpy as np
 
@@ -14,6 +17,28 @@ def results_dir():
     """RESULTS, created if missing"""
     os.makedirs(RESULTS, exist_ok=True)
     return RESULTS
+
+
+def timed_run(cmd, folder, rerun=False, env=None):
+    """Run cmd (which writes folder/summary.json) unless that file exists
+    (or rerun), timing the process into folder/process_wall_s; return the
+    summary with "process_wall_s" added, or None if the run failed (its
+    stderr's tail printed)."""
+    summary = os.path.join(folder, "summary.json")
+    timing = os.path.join(folder, "process_wall_s")
+    if rerun or not os.path.exists(summary):
+        t0 = time.time()
+        r = subprocess.run(cmd, env=env, capture_output=True, text=True)
+        if r.returncode != 0:
+            print(f"{os.path.basename(folder)}: failed\n{r.stderr[-2000:]}")
+            return None
+        with open(timing, "w") as f:
+            f.write(f"{time.time() - t0}\n")
+    with open(summary) as f:
+        s = json.load(f)
+    with open(timing) as f:
+        s["process_wall_s"] = float(f.read())
+    return s
 
 
 def read_float_rows(path):

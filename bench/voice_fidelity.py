@@ -15,7 +15,8 @@ on f0, OQ, peak flow, SPL and the sound's F1/F2, and each level's F1/F2
 against the tract's own (1D, closed glottis).
 
 usage: bench/voice_fidelity.py [BUILD_DIR] [--levels reduced,mixed,full]
-                               [--vowels u,a,i] [--p_sub 800,1200] [--rerun]
+                               [--vowels u,a,i] [--p_sub 800,1200]
+                               [--radiation piston|sommerfeld] [--rerun]
 writes bench/results/voice_fidelity.csv and voice_fidelity.png; run folders
 bench/results/run_fidelity_<level>_<vowel>_<p_sub>/
 """
@@ -24,12 +25,12 @@ import csv
 import json
 import os
 import subprocess
-import time
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-import numpy as np
+
+from benchlib import timed_run
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -37,6 +38,9 @@ ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
 ap.add_argument("--levels", default="reduced,mixed,full")
 ap.add_argument("--vowels", default="u,a,i")
 ap.add_argument("--p_sub", default="800,1200")
+ap.add_argument("--radiation", default="piston",
+                help="the FE levels' lip end (fsai_demo --radiation); other than "
+                     "the default, its runs and table get the suffix _RADIATION")
 ap.add_argument("--rerun", action="store_true")
 args = ap.parse_args()
 exe = os.path.join(args.build, "demos", "fsai_demo")
@@ -50,30 +54,24 @@ levels = {
 }
 
 
+suffix = "" if args.radiation == "piston" else f"_{args.radiation}"
+
+
 def run(level, vowel, p_sub):
-    d = os.path.join(out, f"run_fidelity_{level}_{vowel}_{p_sub}")
-    summary = os.path.join(d, "summary.json")
-    if args.rerun or not os.path.exists(summary):
-        opts, ranks = levels[level]
-        cmd = [exe] + opts + ["--vowel", vowel, "--p-sub", str(p_sub),
-                              "--report=false", "--output", d]
-        if ranks > 1:
-            cmd = ["mpirun", "-n", str(ranks)] + cmd
-        t0 = time.time()
-        r = subprocess.run(cmd, env=env, capture_output=True, text=True)
-        wall = time.time() - t0
-        if r.returncode != 0:
-            print(f"{level} {vowel} {p_sub}: failed\n{r.stderr[-2000:]}")
-            return None
-        with open(os.path.join(d, "process_wall_s"), "w") as f:
-            f.write(f"{wall}\n")
-    with open(summary) as f:
-        s = json.load(f)
-    with open(os.path.join(d, "process_wall_s")) as f:
-        s["process_wall_s"] = float(f.read())
+    opts, ranks = levels[level]
+    if level != "reduced":
+        opts = opts + ["--radiation", args.radiation]
+    d = os.path.join(out, f"run_fidelity_{level}_{vowel}_{p_sub}" +
+                     (suffix if level != "reduced" else ""))
+    cmd = [exe] + opts + ["--vowel", vowel, "--p-sub", str(p_sub),
+                          "--report=false", "--output", d]
+    if ranks > 1:
+        cmd = ["mpirun", "-n", str(ranks)] + cmd
+    s = timed_run(cmd, d, args.rerun, env)
+    if s is None:
+        return None
     # The measures by this build's analysis (--reanalyse reads the run's
     # series.csv again; the run itself is not repeated)
-    opts, _ = levels[level]
     subprocess.run([exe] + opts + ["--vowel", vowel, "--p-sub", str(p_sub), "--reanalyse",
                                    "--report=false", "--output", d],
                    env=env, capture_output=True, check=True)
@@ -119,7 +117,7 @@ for r in rows:
         r[f"{k}_vs_full_pct"] = (100 * (r[k] - full[0][k]) / full[0][k]
                                  if full else float("nan"))
     r["spl_vs_full_db"] = r["spl_db"] - full[0]["spl_db"] if full else float("nan")
-with open(os.path.join(out, "voice_fidelity.csv"), "w", newline="") as f:
+with open(os.path.join(out, f"voice_fidelity{suffix}.csv"), "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
     w.writeheader()
     for r in rows:
@@ -127,19 +125,21 @@ with open(os.path.join(out, "voice_fidelity.csv"), "w", newline="") as f:
 
 fig, ax = plt.subplots(1, 2, figsize=(12, 4.8))
 marker = {"reduced": "o", "mixed": "s", "full": "^"}
+has_full = any(r["level"] == "full" for r in rows)
 for lev in levels:
     sel = [r for r in rows if r["level"] == lev]
-    if not sel or lev == "full":
+    if not sel or lev == "full" or not has_full:
         continue
     for i, (k, name) in enumerate(keys):
         x = [r["wall_s"] for r in sel]
         y = [abs(r[f"{k}_vs_full_pct"]) for r in sel]
         ax[0].scatter(x, y, marker=marker[lev], color=f"C{i}",
                       label=f"{name}" if lev == "reduced" else None)
-ax[0].set(xscale="log", yscale="log", xlabel="wall time of 0.1 s of voice [s]",
-          ylabel="|distance from the full model| [%]",
-          title="cost vs distance from the full model (o reduced, □ mixed)")
-ax[0].legend(fontsize=8)
+if has_full:
+    ax[0].set(xscale="log", yscale="log", xlabel="wall time of 0.1 s of voice [s]",
+              ylabel="|distance from the full model| [%]",
+              title="cost vs distance from the full model (o reduced, □ mixed)")
+    ax[0].legend(fontsize=8)
 for lev in levels:
     sel = [r for r in rows if r["level"] == lev]
     if not sel:
@@ -153,5 +153,5 @@ ax[1].set(xscale="log", xlabel="wall time of 0.1 s of voice [s]",
           ylabel="|sound F − tract F| [%]", title="the sound's F1/F2 against the tract's")
 ax[1].legend(fontsize=7, ncol=3)
 fig.tight_layout()
-fig.savefig(os.path.join(out, "voice_fidelity.png"), dpi=110)
-print("wrote", os.path.join(out, "voice_fidelity.csv"))
+fig.savefig(os.path.join(out, f"voice_fidelity{suffix}.png"), dpi=110)
+print("wrote", os.path.join(out, f"voice_fidelity{suffix}.csv"))

@@ -13,10 +13,9 @@ bench/results/run_folds_<fold>_<p_sub>/
 """
 import argparse
 import csv
-import json
 import os
-import subprocess
-import time
+
+from benchlib import timed_run
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -34,18 +33,13 @@ rows = []
 for p in args.p_sub.split(","):
     for fold, opts in folds.items():
         d = os.path.join(out, f"run_folds_{fold}_{p}")
-        if args.rerun or not os.path.exists(os.path.join(d, "summary.json")):
-            t0 = time.time()
-            subprocess.run([exe, "--flow", "bernoulli", "--acoustics", "1d",
-                            "--vowel", args.vowel, "--p-sub", p,
-                            "--duration", args.duration, "--report=false",
-                            "--output", d] + opts, check=True, capture_output=True)
-            with open(os.path.join(d, "process_wall_s"), "w") as f:
-                f.write(f"{time.time() - t0}\n")
-        with open(os.path.join(d, "summary.json")) as f:
-            s = json.load(f)
-        with open(os.path.join(d, "process_wall_s")) as f:
-            wall = float(f.read())
+        s = timed_run([exe, "--flow", "bernoulli", "--acoustics", "1d",
+                       "--vowel", args.vowel, "--p-sub", p,
+                       "--duration", args.duration, "--report=false",
+                       "--output", d] + opts, d, args.rerun)
+        if s is None:
+            raise SystemExit(1)
+        wall = s["process_wall_s"]
         v = s["voice"]
         F = (v.get("formants_hz") or []) + [float("nan")] * 2
         rows.append(dict(fold=fold, p_sub=p, f0_hz=v["f0_hz"], sound_f0_hz=s["f0_hz"],

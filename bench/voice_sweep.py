@@ -10,29 +10,34 @@ measured human trends it should follow:
   - SPL: 80.0 dB at 0.3 m for p_sub 10 cmH2O (981 Pa) and +9.3 dB per
     doubling of p_sub, 15 untrained male voices, syllable [pae]
     (Björklund & Sundberg 2016, J. Voice 30(1):15-20); the microphone is
-    put at 0.3 m to compare (--mic_distance, 1D acoustics only);
+    put at 0.3 m to compare (--mic_distance; the FE acoustics end at the
+    lips under the piston load, A11, and radiate to any distance);
   - f0: half an octave per 6.5 cmH2O (638 Pa) of p_sub when the pitch is
     not controlled, one male speaker, vowel [a] (Ladefoged & McKinney
     1963, J. Acoust. Soc. Am. 35(4):454-460).
 
+--param fold-stiffness scales both modal stiffnesses of the 2-DOF fold
+(its in-vacuo frequencies 100 / 155 Hz times the square root of the value),
+charted against the string model's f0 ∝ √stiffness.
+
 usage: bench/voice_sweep.py [BUILD_DIR] [--fidelity reduced|mixed|full]
-         [--param p-sub] [--values 400,600,...] [--vowel a]
+         [--param p-sub|fold-stiffness|OPTION] [--values 400,600,...] [--vowel a]
          [--duration 0.3] [--extra "--vf.f1 110"] [--name NAME]
 writes bench/results/voice_sweep_<name>.csv and .png; run folders
 bench/results/run_sweep_<name>_<value>/
 """
 import argparse
 import csv
-import json
 import os
 import shlex
 import subprocess
-import time
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+
+from benchlib import timed_run
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -52,33 +57,37 @@ glottis = os.path.join(args.build, "demos", "fsai_glottis")
 out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-fidelity = {"reduced": ["--flow", "bernoulli", "--acoustics", "1d", "--mic_distance", "0.3"],
+# The microphone at 0.3 m (the human data's): the 1D tract's and the FE
+# tract's piston load (A11) both radiate a monopole to any distance
+fidelity = {"reduced": ["--flow", "bernoulli", "--acoustics", "1d"],
             "mixed": ["--flow", "bernoulli", "--acoustics", "fe"],
-            "full": ["--flow", "fe", "--acoustics", "fe"]}[args.fidelity]
+            "full": ["--flow", "fe", "--acoustics", "fe"]}[args.fidelity] + \
+    ["--mic_distance", "0.3"]
 ranks = 2 if args.fidelity == "full" else 1
 values = [float(v) for v in args.values.split(",")]
+
+
+def option(val):
+    """The fsai_demo options for one value of --param"""
+    if args.param == "fold-stiffness":
+        # Both modal stiffnesses of the 2-DOF fold times val: its in-vacuo
+        # frequencies (the voice's 100 / 155 Hz) times sqrt(val)
+        return ["--vf.f1", f"{100 * val ** 0.5:g}", "--vf.f2", f"{155 * val ** 0.5:g}"]
+    return [f"--{args.param}", f"{val:g}"]
+
 
 rows = []
 for val in values:
     d = os.path.join(out, f"run_sweep_{name}_{val:g}")
-    summary = os.path.join(d, "summary.json")
-    if args.rerun or not os.path.exists(summary):
-        cmd = [demo] + fidelity + ["--vowel", args.vowel, "--duration", str(args.duration),
-                                   f"--{args.param}", f"{val:g}", "--report=false",
-                                   "--output", d] + shlex.split(args.extra)
-        if ranks > 1:
-            cmd = ["mpirun", "-n", str(ranks)] + cmd
-        t0 = time.time()
-        r = subprocess.run(cmd, env=env, capture_output=True, text=True)
-        if r.returncode != 0:
-            print(f"{args.param} = {val:g}: failed: {r.stderr.strip()[-300:]}")
-            continue
-        with open(os.path.join(d, "process_wall_s"), "w") as f:
-            f.write(f"{time.time() - t0}\n")
-    with open(summary) as f:
-        s = json.load(f)
-    with open(os.path.join(d, "process_wall_s")) as f:
-        wall = float(f.read())
+    cmd = [demo] + fidelity + ["--vowel", args.vowel, "--duration", str(args.duration),
+                               "--report=false", "--output", d] + option(val) + \
+        shlex.split(args.extra)
+    if ranks > 1:
+        cmd = ["mpirun", "-n", str(ranks)] + cmd
+    s = timed_run(cmd, d, args.rerun, env)
+    if s is None:
+        continue
+    wall = s["process_wall_s"]
     v = s["voice"]
     # A voice is a self-sustained oscillation that reaches the statistics
     # window: at least 3 cycles there
@@ -139,6 +148,15 @@ if args.param == "p-sub":
     if ref is not None:
         ax[0].plot(p, f0[ref] * 2 ** (0.5 * (p - x[ref]) / 638.0), "k--", lw=1,
                    label="human slope (Ladefoged & McKinney 1963)")
+if args.param == "fold-stiffness":
+    # A string's (or spring's) f0 grows as the square root of its stiffness
+    # (Titze 1994, Principles of Voice Production, §8): through the value 1
+    f0 = [r["f0_hz"] for r in rows]
+    ref = next((i for i, v in enumerate(x) if v == 1.0 and np.isfinite(f0[i])), None)
+    if ref is not None:
+        k = np.linspace(x.min(), x.max(), 50)
+        ax[0].plot(k, f0[ref] * np.sqrt(k / x[ref]), "k--", lw=1,
+                   label="f0 ∝ √stiffness (string model, Titze 1994)")
 for a in ax:
     a.legend(fontsize=7)
 fig.suptitle(f"fsai_demo sweep of --{args.param}, vowel [{args.vowel}], {args.fidelity} fidelity")

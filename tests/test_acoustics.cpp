@@ -5,6 +5,7 @@
 // area-function input errors.
 #include "catch.h"
 #include <Eigen/Dense>
+#include <acoustics/MonopoleMicrophone.h>
 #include <acoustics/TubeTract.h>
 #include <acoustics/WaveSolver.h>
 #include <acoustics/pulse_response.h>
@@ -761,4 +762,34 @@ TEST_CASE("1D time-domain tract: resonances of the chain-matrix model (A9)",
     // low-ka formula it matches: +1.05 %
     CHECK(near->f == Approx(ref[n].f).epsilon(n < 2 ? 0.005 : 0.02));
   }
+}
+
+TEST_CASE("Monopole microphone: the lip flow's rate delayed by r/c0 (A9, A11)",
+          "[acoustics]")
+{
+  // U̇_L = sin(ωt) recorded at the steps' ends (lag 0) or midpoints (lag ½):
+  // the microphone at r hears ρ0 sin(ω(t − r/c0)) / (2π r), the delay
+  // between recorded values interpolated linearly
+  namespace ac = fsai::acoustics;
+  const double r = 0.3, c0 = 343.0, rho0 = 1.2, dt = 2e-5;
+  const double w = 2 * M_PI * 300.0;
+  const double lag = GENERATE(0.0, 0.5);
+  ac::MonopoleMicrophone mic(r, c0, rho0, dt, lag);
+  double err = 0;
+  for (int k = 1; k <= 2000; ++k)
+  {
+    const double t = k * dt;
+    mic.record(std::sin(w * (t - lag * dt)));
+    if (t > r / c0 + 2 * dt)
+    {
+      const double exact = rho0 * std::sin(w * (t - r / c0)) / (2 * M_PI * r);
+      err = std::max(err, std::abs(mic.pressure() - exact));
+    }
+  }
+  // Linear interpolation: error ≤ (ω Δt)²/8 of the amplitude
+  CHECK(err <= rho0 / (2 * M_PI * r) * std::pow(w * dt, 2) / 8 * 1.01);
+  // A checkpoint's history gives the same pressure
+  ac::MonopoleMicrophone copy(r, c0, rho0, dt, lag);
+  copy.load(mic.save());
+  CHECK(copy.pressure() == mic.pressure());
 }

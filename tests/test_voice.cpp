@@ -28,6 +28,24 @@ std::shared_ptr<dolfinx::mesh::Mesh> rectangle(double L, std::size_t nx,
 }
 
 /// An all-pole "vowel": impulse train at f0 through resonators (F, B)
+/// x through two-pole resonators (frequencies F, bandwidths B [Hz]) in
+/// series, sampled at fs
+std::vector<double> all_pole(std::vector<double> x,
+                             const std::vector<double>& F,
+                             const std::vector<double>& B, double fs)
+{
+  for (std::size_t k = 0; k < F.size(); ++k)
+  {
+    const double r = std::exp(-M_PI * B[k] / fs);
+    const double a1 = 2 * r * std::cos(2 * M_PI * F[k] / fs), a2 = -r * r;
+    std::vector<double> y(x.size(), 0.0);
+    for (std::size_t i = 0; i < x.size(); ++i)
+      y[i] = x[i] + (i > 0 ? a1 * y[i - 1] : 0) + (i > 1 ? a2 * y[i - 2] : 0);
+    x = y;
+  }
+  return x;
+}
+
 std::vector<double> synthetic_vowel(double f0, std::vector<double> F,
                                     std::vector<double> B, double fs, double T)
 {
@@ -35,16 +53,7 @@ std::vector<double> synthetic_vowel(double f0, std::vector<double> F,
   std::vector<double> x(n, 0.0);
   for (double t = 0; t < T; t += 1.0 / f0)
     x[std::min(n - 1, std::size_t(std::lround(t * fs)))] = 1.0;
-  for (std::size_t k = 0; k < F.size(); ++k)
-  {
-    const double r = std::exp(-M_PI * B[k] / fs);
-    const double a1 = 2 * r * std::cos(2 * M_PI * F[k] / fs), a2 = -r * r;
-    std::vector<double> y(n, 0.0);
-    for (std::size_t i = 0; i < n; ++i)
-      y[i] = x[i] + (i > 0 ? a1 * y[i - 1] : 0) + (i > 1 ? a2 * y[i - 2] : 0);
-    x = y;
-  }
-  return x;
+  return all_pole(x, F, B, fs);
 }
 } // namespace
 
@@ -279,6 +288,17 @@ std::vector<double> rosenberg(double T, double rp, double rn, double A,
   }
   return q;
 }
+/// The sound of the flow q: its derivative (the excitation the radiated
+/// sound carries) through the resonators F, B
+std::vector<double> radiated(const std::vector<double>& q, double dt,
+                             const std::array<double, 3>& F,
+                             const std::array<double, 3>& B)
+{
+  std::vector<double> x(q.size(), 0.0);
+  for (std::size_t i = 1; i < q.size(); ++i)
+    x[i] = (q[i] - q[i - 1]) / dt;
+  return all_pole(x, {F.begin(), F.end()}, {B.begin(), B.end()}, 1 / dt);
+}
 } // namespace
 
 TEST_CASE("Voice measures of a Rosenberg pulse train (A10)", "[voice]")
@@ -412,19 +432,8 @@ TEST_CASE("Closed-phase covariance LPC recovers a known all-pole tract "
   namespace ac = fsai::acoustics;
   const double fs = 10000, dt = 1 / fs, T = 1 / 120.0;
   const auto q = rosenberg(T, 0.4, 0.16, 1.0, 0.0, 0.0, 36, dt);
-  std::vector<double> x(q.size(), 0.0);
-  for (std::size_t i = 1; i < q.size(); ++i)
-    x[i] = (q[i] - q[i - 1]) / dt;
   const std::array<double, 3> F{500, 1500, 2500}, B{60, 90, 120};
-  for (int k = 0; k < 3; ++k)
-  {
-    const double r = std::exp(-M_PI * B[k] / fs);
-    const double a1 = 2 * r * std::cos(2 * M_PI * F[k] / fs), a2 = -r * r;
-    std::vector<double> y(x.size(), 0.0);
-    for (std::size_t i = 0; i < x.size(); ++i)
-      y[i] = x[i] + (i > 0 ? a1 * y[i - 1] : 0) + (i > 1 ? a2 * y[i - 2] : 0);
-    x = y;
-  }
+  std::vector<double> x = radiated(q, dt, F, B);
   const auto m = fsai::voice::glottal_flow_measures(q, dt);
   REQUIRE(m.closed.size() >= 30);
   // Each closed phase: Q within 2 % of its amplitude, from 2 acos(0.02)/π
@@ -447,4 +456,36 @@ TEST_CASE("Closed-phase covariance LPC recovers a known all-pole tract "
   }
   // No closed phase: nothing to fit
   CHECK(ac::closed_phase_resonances(x, dt, {}).empty());
+}
+
+TEST_CASE("Formants of the periodic part of a voice with jitter (A10)",
+          "[voice]")
+{
+  // Rosenberg flow at f0 120 Hz, its derivative through the all-pole
+  // filter F (500, 1500, 2500) Hz, B (60, 90, 120) Hz, with periods
+  // alternating by ±jitter; no closed phase given, so the sound measures
+  // take LPC of the periodic part over the flow's cycles. The mean cycle
+  // over the mean period, repeated, keeps F1–F3 within 5 % at every
+  // jitter (the autocorrelation method's limit at this f0: the test
+  // above). The cycles cut to the shortest one and repeated had a jump at
+  // each joint; at 2 % jitter that click train lost F1 (no pole below
+  // 1 kHz)
+  namespace ac = fsai::acoustics;
+  const double fs = 10000, dt = 1 / fs, T = 1 / 120.0;
+  const double jitter = GENERATE(0.0, 0.005, 0.02);
+  CAPTURE(jitter);
+  const auto q = rosenberg(T, 0.4, 0.16, 1.0, 0.0, jitter, 36, dt);
+  const std::array<double, 3> F{500, 1500, 2500}, B{60, 90, 120};
+  const std::vector<double> x = radiated(q, dt, F, B);
+  const auto m = fsai::voice::glottal_flow_measures(q, dt);
+  const auto s = fsai::voice::sound_measures(x, dt, m.boundaries);
+  CHECK(s.formant_method == "periodic-part");
+  REQUIRE(s.formants_hz.size() >= 3);
+  for (int k = 0; k < 3; ++k)
+  {
+    fsai::log::info("periodic-part LPC, jitter {:.1f} %: F{} {:.1f} Hz (set "
+                    "{:.0f})",
+                    100 * jitter, k + 1, s.formants_hz[k], F[k]);
+    CHECK(s.formants_hz[k] == Approx(F[k]).epsilon(0.05));
+  }
 }

@@ -6,7 +6,7 @@
 //-----------------------------------------------------------------------------
 fsai::acoustics::TubeTract::TubeTract(const mesh::AreaFunction& af,
                                       const TubeTractParameters& p, double dt)
-    : _par(p), _dt(dt)
+    : _par(p), _dt(dt), _mic(p.mic_distance, p.c0, p.rho0, dt, 0.5)
 {
   fsai::require_positive("tract time step", dt);
   fsai::require_positive("--tract1d.dx", p.dx);
@@ -36,10 +36,10 @@ fsai::acoustics::TubeTract::TubeTract(const mesh::AreaFunction& af,
             * (0.5 * l[j - 1] / line.area[j - 1] + 0.5 * l[j] / line.area[j]);
   }
   const double AL = line.area.back();
-  const double a = std::sqrt(AL / M_PI);
+  const PistonLoad load = flanged_piston(AL, p.c0, p.rho0);
   _L_lip = p.rho0 * 0.5 * l.back() / AL;
-  _L_rad = 0.8216 * p.rho0 * a / AL;
-  _R = 2 * 0.8216 * 0.8216 * p.rho0 * p.c0 / AL;
+  _L_rad = load.inertance / AL;
+  _R = load.resistance / AL;
   _m = std::max(1, int(std::ceil(p.c0 * dt / (p.cfl * l_min))));
   _h = dt / _m;
   _p.assign(n, 0.0);
@@ -86,40 +86,24 @@ void fsai::acoustics::TubeTract::step(double u_glottis)
   }
   _ug = u_glottis;
   _t += _dt;
-  // The lip flow's rate over the step, kept as long as the sound takes to
-  // reach the microphone
-  _udot.push_back((_u[n] - _u_lips_prev) / _dt);
+  // The lip flow's rate over the step (its value stands at the step's
+  // midpoint)
+  _mic.record((_u[n] - _u_lips_prev) / _dt);
   _u_lips_prev = _u[n];
-  const std::size_t keep
-      = std::size_t(std::ceil(_par.mic_distance / _par.c0 / _dt)) + 2;
-  while (_udot.size() > keep)
-    _udot.pop_front();
-}
-//-----------------------------------------------------------------------------
-double fsai::acoustics::TubeTract::p_mic() const
-{
-  // U̇_L(t − r/c0), linear between the steps' values (the value of a step
-  // stands at its midpoint)
-  if (_udot.empty())
-    return 0.0;
-  const double delay = _par.mic_distance / _par.c0 / _dt - 0.5;
-  const double back = std::max(0.0, delay);
-  const std::size_t i = std::size_t(std::floor(back));
-  const double w = back - double(i);
-  const std::size_t last = _udot.size() - 1;
-  const double a = _udot[last - std::min(i, last)];
-  const double b = _udot[last - std::min(i + 1, last)];
-  const double udot = (1 - w) * a + w * b;
-  return _par.rho0 * udot / (2 * M_PI * _par.mic_distance);
 }
 //-----------------------------------------------------------------------------
 nlohmann::json fsai::acoustics::TubeTract::save() const
 {
-  return {{"p", _p},         {"u", _u},
-          {"v", _v},         {"w", _w},
-          {"u_rad", _u_rad}, {"p_rad", _p_rad},
-          {"ug", _ug},       {"t", _t},
-          {"udot", _udot},   {"u_lips_prev", _u_lips_prev}};
+  return {{"p", _p},
+          {"u", _u},
+          {"v", _v},
+          {"w", _w},
+          {"u_rad", _u_rad},
+          {"p_rad", _p_rad},
+          {"ug", _ug},
+          {"t", _t},
+          {"udot", _mic.save()},
+          {"u_lips_prev", _u_lips_prev}};
 }
 //-----------------------------------------------------------------------------
 void fsai::acoustics::TubeTract::load(const nlohmann::json& j)
@@ -135,6 +119,6 @@ void fsai::acoustics::TubeTract::load(const nlohmann::json& j)
   _p_rad = j.at("p_rad");
   _ug = j.at("ug");
   _t = j.at("t");
-  _udot = j.at("udot").get<std::deque<double>>();
+  _mic.load(j.at("udot"));
   _u_lips_prev = j.at("u_lips_prev");
 }

@@ -16,8 +16,8 @@
 // the axis at distance r hears the half-space monopole of the lip flow,
 // p(r, t) = ρ0 U̇_L(t − r/c0) / (2π r).
 #pragma once
+#include "MonopoleMicrophone.h"
 #include "tube_model.h"
-#include <deque>
 #include <mesh/area_function.h>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -55,7 +55,7 @@ public:
   /// Volume flow out of the lips [m³/s]
   double u_lips() const { return _u.back(); }
   /// Radiated pressure at the microphone [Pa]
-  double p_mic() const;
+  double p_mic() const { return _mic.pressure(); }
   /// Sections of the line and substeps per step
   std::size_t sections() const { return _C.size(); }
   int substeps() const { return _m; }
@@ -72,7 +72,7 @@ private:
   double _L_lip, _R, _L_rad;
   std::vector<double> _p, _u, _v, _w; // cell p, face U, wall v, w
   double _u_rad = 0, _p_rad = 0, _ug = 0, _t = 0;
-  std::deque<double> _udot; // U̇_L at the last steps, newest last
+  MonopoleMicrophone _mic; // hears the lips' U̇ over each step
   double _u_lips_prev = 0;
 };
 } // namespace fsai::acoustics

@@ -5,6 +5,7 @@
 #include "../common/errors.h"
 #include "../common/petsc_solver.h"
 #include "../common/timer.h"
+#include "piston_load.h"
 #include <cmath>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/assembler.h>
@@ -199,7 +200,8 @@ fsai::acoustics::WaveSolver::Forms fsai::acoustics::WaveSolver::create_forms(
   auto tags_in = role_tags(mesh, boundaries.inlet, "inlet");
   auto tags_wall = role_tags(mesh, boundaries.vibrating, "vibrating");
   auto tags_yield = role_tags(mesh, boundaries.yielding, "yielding");
-  _tags = {tags_rad, tags_damped, tags_in, tags_wall, tags_yield};
+  auto tags_piston = role_tags(mesh, boundaries.piston, "piston");
+  _tags = {tags_rad, tags_damped, tags_in, tags_wall, tags_yield, tags_piston};
   // A role is active if any rank has facets of it (collective)
   auto on_any_rank = [&](const std::vector<std::int32_t>& facets)
   {
@@ -209,6 +211,14 @@ fsai::acoustics::WaveSolver::Forms fsai::acoustics::WaveSolver::create_forms(
   };
   _yielding = on_any_rank(boundaries.yielding);
   _vibrating = on_any_rank(boundaries.vibrating);
+  _piston = on_any_rank(boundaries.piston);
+  if (_piston)
+  {
+    const PistonLoad load
+        = flanged_piston(boundaries.piston_area, params.c0, params.rho0);
+    _piston_damping = params.rho0 / load.resistance;
+    _piston_stiffness = params.rho0 / load.inertance;
+  }
   using fem::IntegralType;
   auto on = [](const std::shared_ptr<mesh::MeshTags<std::int32_t>>& t)
   {
@@ -240,6 +250,8 @@ fsai::acoustics::WaveSolver::Forms fsai::acoustics::WaveSolver::create_forms(
                          {}, on(tags_in));
   f.b_yield
       = form(acoustic_forms::b_inlet(tdim, _degree), {_V}, {}, on(tags_yield));
+  f.b_piston
+      = form(acoustic_forms::b_inlet(tdim, _degree), {_V}, {}, on(tags_piston));
   return f;
 }
 //-----------------------------------------------------------------------------
@@ -316,6 +328,25 @@ void fsai::acoustics::WaveSolver::create_state(const Forms& f)
     VecCopy(_wall_b.vec(), _work_p.vec());
     VecScale(_work_p.vec(), _beta * _dt * _dt / _wall_m_eff);
     MatDiagonalSet(_A.mat(), _work_p.vec(), ADD_VALUES);
+  }
+  // Piston load (A11): ρ0 v̇ = c_p ṗ + k_p p on its facets adds the lumped
+  // boundary mass b = ∫ φ_i w ds times c_p to C and times k_p to K (and
+  // to A, γΔt C + βΔt² K)
+  _piston_b = like();
+  if (_piston)
+  {
+    assemble_into(*f.b_piston, _piston_b.vec());
+    VecScale(_piston_b.vec(), 1.0 / _rho0); // b_inlet's form is ρ0 ∫ φ w ds
+    auto add_diagonal = [&](Mat A, double scale)
+    {
+      VecCopy(_piston_b.vec(), _work_p.vec());
+      VecScale(_work_p.vec(), scale);
+      MatDiagonalSet(A, _work_p.vec(), ADD_VALUES);
+    };
+    add_diagonal(_C.mat(), _piston_damping);
+    add_diagonal(_K.mat(), _piston_stiffness);
+    add_diagonal(_A.mat(), _gamma * _dt * _piston_damping
+                               + _beta * _dt * _dt * _piston_stiffness);
   }
   double local = fem::assemble_scalar(*f.inlet_measure);
   MPI_Allreduce(&local, &_inlet_measure, 1, MPI_DOUBLE, MPI_SUM,
@@ -621,6 +652,17 @@ void fsai::acoustics::WaveSolver::assemble_into(const Form& L, Vec out)
   _b_assembly->scatter_rev(std::plus<double>());
   la::petsc::Vector w(la::petsc::create_vector_wrap(*_b_assembly), false);
   VecCopy(w.vec(), out);
+}
+//-----------------------------------------------------------------------------
+double fsai::acoustics::WaveSolver::radiated_flow_rate() const
+{
+  if (!_piston)
+    return 0.0;
+  // ∫ v̇ w ds = (1/ρ0) ∫ (c_p ṗ + k_p p) w ds, exact for P1/P2 through b
+  PetscScalar bv, bp;
+  VecDot(_piston_b.vec(), _v.vec(), &bv);
+  VecDot(_piston_b.vec(), _p_vec.vec(), &bp);
+  return (_piston_damping * bv + _piston_stiffness * bp) / _rho0;
 }
 //-----------------------------------------------------------------------------
 double fsai::acoustics::WaveSolver::energy() const

@@ -69,6 +69,13 @@ struct WaveBoundaries
   std::vector<std::int32_t> vibrating;
   /// Pressure release p' = 0
   std::vector<std::int32_t> pressure_release;
+  /// Lip opening loaded by a flanged piston of area `piston_area` (A11):
+  /// the outward normal velocity v obeys ρ0 v̇ = ṗ/(r/ρ0) + p/(m/ρ0),
+  /// r, m of flanged_piston, so ∂p/∂n = −ρ0 v̇ on these facets. The domain
+  /// ends at the lips; the radiated field is the caller's (a monopole of
+  /// the lip flow, radiated_flow_rate)
+  std::vector<std::int32_t> piston;
+  double piston_area = 0.0; ///< physical area of the opening [m²]
   /// Yielding (locally reacting) wall ∂p/∂n = −ρ0 ü with
   /// m ü + r u̇ + k u = p' (WaveParameters::wall_*): the wall losses that
   /// give the tract's resonances their bandwidths
@@ -155,6 +162,9 @@ public:
   double inlet_measure() const { return _inlet_measure; }
   /// Global number of unknowns
   std::int64_t dofs() const;
+  /// U̇ out of the piston facets after the last step, ∫ v̇ w ds (per unit
+  /// depth planar, per radian axisymmetric; collective) [m²/s² or m³/s²]
+  double radiated_flow_rate() const;
   /// The load vector b of E21 for the current source data (inlet,
   /// Lighthill, vibrating wall): owned entries, for tests and diagnostics
   std::vector<double> source_vector();
@@ -196,6 +206,11 @@ private:
       _wall_mask{nullptr, false}, _wu{nullptr, false}, _wv{nullptr, false},
       _wa{nullptr, false}, _wu_pred{nullptr, false}, _wv_pred{nullptr, false},
       _wall_work{nullptr, false};
+  // Piston load (A11): ∫ φ_i w ds on its facets and the coefficients of
+  // ṗ and p in ρ0 v̇ (1/(r/ρ0) [s/m], 1/(m/ρ0) [1/m])
+  bool _piston = false;
+  dolfinx::la::petsc::Vector _piston_b{nullptr, false};
+  double _piston_damping = 0.0, _piston_stiffness = 0.0;
   std::unique_ptr<dolfinx::la::Vector<double>> _b_assembly;
   // A slit (set_slit): its operator, the effective matrix without it (A0)
   // and Lighthill's source scale, which it sets in its cells
@@ -210,7 +225,7 @@ private:
   // Set-up steps of the constructor
   struct Forms
   {
-    std::shared_ptr<Form> m, c, k, b_inlet, b_yield, inlet_measure;
+    std::shared_ptr<Form> m, c, k, b_inlet, b_yield, b_piston, inlet_measure;
   };
   /// Spaces of p', the flow velocity, the taper and the source scale
   void create_spaces(std::shared_ptr<dolfinx::mesh::Mesh> mesh);
@@ -222,7 +237,8 @@ private:
   void assemble_matrices(const Forms& f);
   /// p' = 0 rows of A (pressure release)
   void fix_pressure_release(const std::vector<std::int32_t>& facets);
-  /// State vectors, the inlet's source vector, the yielding walls' mass
+  /// State vectors, the inlet's source vector, the yielding walls' mass,
+  /// the piston load
   void create_state(const Forms& f);
   dolfinx::la::petsc::KrylovSolver _solver;
 };

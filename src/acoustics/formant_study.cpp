@@ -27,9 +27,10 @@ void ac::FormantParameters::bind(fsai::common::Parameters& p)
   p.add_choice("model", model, {"planar", "axisym", "1d"},
                "planar 2D channel, axisymmetric tube, or 1D chain matrices");
   p.add_choice("radiation", radiation,
-               {"sommerfeld", "pml", "pressure-release"},
+               {"sommerfeld", "pml", "pressure-release", "piston"},
                "lip end: radiation region closed by Sommerfeld or an "
-               "absorbing layer, or p' = 0 at the lips");
+               "absorbing layer, p' = 0 at the lips, or the tract ending at "
+               "the lips with a flanged piston's load (A11)");
   p.add("h", h, "mesh size [m] (0: c0 / (f_max * elements_per_wavelength))");
   p.add("elements_per_wavelength", elements_per_wavelength,
         "elements per wavelength at f_max when --h is 0");
@@ -66,9 +67,9 @@ ac::TractReference ac::tract_reference(const FormantParameters& fp,
       fp.area_function.empty() ? mesh::vowel_file(fp.vowel) : fp.area_function);
   // The 1D model of the same wall (smooth or stepped) as the FE mesh
   ref.area1d = mesh::resample(ref.area, geo.smooth, 5e-4);
-  ref.lip = fp.radiation == "pressure-release" ? LipEnd::pressure_release
-            : geo.baffle                       ? LipEnd::flanged
-                                               : LipEnd::unflanged;
+  ref.lip = fp.radiation == "pressure-release"       ? LipEnd::pressure_release
+            : geo.baffle or fp.radiation == "piston" ? LipEnd::flanged
+                                                     : LipEnd::unflanged;
   // Observation point of H: the lips, or 5 mm inside them for p = 0
   ref.x_obs = default_observation_point(ref.area, ref.lip);
   // Yielding walls: the 1D model's wall perimeter is that of the FE model
@@ -120,7 +121,7 @@ ac::Formants ac::formants_fe(MPI_Comm comm, const FormantParameters& fp,
   const auto& wall1d = ref.wall;
   std::vector<double> formants, bandwidths;
   geo.model = fp.model;
-  geo.open = fp.radiation != "pressure-release";
+  geo.open = fp.radiation == "sommerfeld" or fp.radiation == "pml";
   geo.layer = fp.radiation == "pml" ? fp.layer : 0.0;
   geo.h
       = fp.h > 0 ? fp.h : wave.c0 / (pulse.f_max * fp.elements_per_wavelength);
@@ -135,6 +136,7 @@ ac::Formants ac::formants_fe(MPI_Comm comm, const FormantParameters& fp,
   bm.area_factor
       = bm.axisymmetric ? 2 * M_PI : geo.depth * (geo.half ? 2.0 : 1.0);
   bm.radiation = fp.radiation;
+  bm.piston_area = af.area_at(af.length(), geo.smooth);
   bm.radiation_radius = geo.radius;
   bm.centre = {af.length(), 0.0, 0.0};
   bm.spherical = bm.axisymmetric;

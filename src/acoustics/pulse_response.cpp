@@ -55,6 +55,11 @@ fsai::acoustics::PulseResult fsai::acoustics::pulse_response(
   std::shared_ptr<dolfinx::fem::Function<double>> sigma;
   if (bm.radiation == "pressure-release")
     b.pressure_release = facets(m, "lips");
+  else if (bm.radiation == "piston")
+  {
+    b.piston = facets(m, "lips");
+    b.piston_area = bm.piston_area;
+  }
   else if (bm.radiation == "sommerfeld" or bm.radiation == "pml")
   {
     b.radiation = facets(m, "radiation");
@@ -71,8 +76,8 @@ fsai::acoustics::PulseResult fsai::acoustics::pulse_response(
   }
   else
   {
-    throw fsai::InputError("radiation must be sommerfeld, pml or "
-                           "pressure-release (got '"
+    throw fsai::InputError("radiation must be sommerfeld, pml, "
+                           "pressure-release or piston (got '"
                            + bm.radiation + "')");
   }
 

@@ -47,8 +47,10 @@ struct TractBoundaryModel
   double area_factor = 1.0;
   /// "sommerfeld" (with the curvature term of a circle/sphere of radius
   /// radiation_radius), "pml" (absorbing layer in the cells "layer" plus
-  /// Sommerfeld outside it), "pressure-release" (p' = 0 on "lips")
+  /// Sommerfeld outside it), "pressure-release" (p' = 0 on "lips"),
+  /// "piston" (the flanged piston's load on "lips", A11)
   std::string radiation = "sommerfeld";
+  double piston_area = 0.0;       ///< physical lip area for "piston" [m²]
   double radiation_radius = 0.08; ///< radius of the radiation boundary
   std::array<double, 3> centre{}; ///< centre of the radiation circle
   bool spherical = false;         ///< β = 1/R (3D, axisymmetric); else 1/(2R)

@@ -172,3 +172,11 @@ std::vector<fsai::acoustics::Resonance> fsai::acoustics::tube_resonances(
   return out;
 }
 //-----------------------------------------------------------------------------
+//-----------------------------------------------------------------------------
+fsai::acoustics::PistonLoad
+fsai::acoustics::flanged_piston(double area, double c0, double rho0)
+{
+  fsai::require_positive("piston area", area);
+  const double a = std::sqrt(area / M_PI);
+  return {2 * 0.8216 * 0.8216 * rho0 * c0, 0.8216 * rho0 * a};
+}

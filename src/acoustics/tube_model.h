@@ -12,6 +12,7 @@
 #pragma once
 
 #include "mesh/area_function.h"
+#include "piston_load.h"
 #include <complex>
 #include <string>
 #include <vector>

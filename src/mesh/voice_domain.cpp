@@ -113,7 +113,7 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
   // Planar half-width of the tract at tract coordinate s
   auto r = [&](double s) { return 0.5 * tract.area_at(s, true) / g.depth; };
   const double r_lips = r(tract.length());
-  fsai::require(R > 1.5 * r_lips, "--voice.radius",
+  fsai::require(!vg.radiation_region or R > 1.5 * r_lips, "--voice.radius",
                 "larger than the mouth half-width", R);
   fsai::require(vg.h_fold <= 0.5 * g.rest_gap, "--voice.h_fold",
                 "<= half the rest gap", vg.h_fold);
@@ -150,9 +150,10 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
         gmsh::model::add("voice_domain");
         // Boundary, counter-clockwise from the inlet's axis end
         const int p_in0 = geo::addPoint(x0, 0, 0);
-        const int p_ax1 = geo::addPoint(xL + R, 0, 0);
+        const bool open = vg.radiation_region;
         const int p_c = geo::addPoint(xL, 0, 0);
-        const int p_top = geo::addPoint(xL, R, 0);
+        const int p_ax1 = open ? geo::addPoint(xL + R, 0, 0) : p_c;
+        const int p_top = open ? geo::addPoint(xL, R, 0) : -1;
         std::vector<int> tract_pts = {geo::addPoint(xL, r_lips, 0)};
         for (std::size_t k = tract.size(); k-- > 0;)
         {
@@ -169,9 +170,12 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
         const int p_in1 = geo::addPoint(x0, H, 0);
 
         const int axis = geo::addLine(p_in0, p_ax1);
-        const int arc = geo::addCircleArc(p_ax1, p_c, p_top);
-        const int baffle = geo::addLine(p_top, tract_pts.front());
-        std::vector<int> walls = {baffle};
+        // The outer arc and the baffle, or the lip opening
+        const int arc = open ? geo::addCircleArc(p_ax1, p_c, p_top)
+                             : geo::addLine(p_c, tract_pts.front());
+        std::vector<int> walls;
+        if (open)
+          walls.push_back(geo::addLine(p_top, tract_pts.front()));
         for (std::size_t i = 0; i + 1 < tract_pts.size(); ++i)
           walls.push_back(geo::addLine(tract_pts[i], tract_pts[i + 1]));
         if (p_out1 > 0)
@@ -191,7 +195,7 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
         const int air = geo::addPlaneSurface({geo::addCurveLoop(loop)});
         std::vector<int> axes = {axis}, outer = {arc};
         int layer = -1;
-        if (vg.layer > 0)
+        if (open and vg.layer > 0)
         {
           // Annulus R < |x − x_L| < R + d: the absorbing layer
           const int q_ax = geo::addPoint(xL + Rl, 0, 0);
@@ -212,7 +216,7 @@ fsai::mesh::voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
               {"axis", axes},
               {"wall", walls},
               {"fold", {fold}},
-              {"radiation", outer}})
+              {open ? "radiation" : "lips", outer}})
         {
           gmsh::model::addPhysicalGroup(1, tags, id);
           gmsh::model::setPhysicalName(1, id++, name);

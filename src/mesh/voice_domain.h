@@ -24,6 +24,9 @@ namespace fsai::mesh
 /// half y ≥ 0 of a planar model of depth L_g.
 struct VoiceDomainGeometry
 {
+  /// A half-disc radiation region beyond the lips; false: the domain ends
+  /// at the lips (set by the scene for the piston load, A11)
+  bool radiation_region = true;
   double radius = 0.05;      ///< radiation region around the lips [m]
   double layer = 0.0;        ///< absorbing layer beyond `radius` [m] (0: none)
   double h = 0.004;          ///< acoustic mesh size away from walls [m]
@@ -59,9 +62,10 @@ AreaFunction voice_subglottal(const glottis::FoldProfile& profile);
 /// glottis_channel (fold from 0 to T, inlet at −inlet_length), lips at
 /// x = T + tract length. Facet groups "inlet" (subglottal end), "axis",
 /// "wall" (channel and tract walls, the step between them and the baffle at
-/// the lips plane), "fold", "radiation" (outer arc); cell groups "air" and
-/// "layer". Size h_fold on the fold growing with the distance, at most
-/// h, and at most half-width / cells_across inside the tract.
+/// the lips plane), "fold", "radiation" (outer arc) or, without the
+/// radiation region, "lips" (the opening); cell groups "air" and "layer". Size
+/// h_fold on the fold growing with the distance, at most h, and at most
+/// half-width / cells_across inside the tract.
 MeshData voice_domain(MPI_Comm comm, const glottis::FoldProfile& profile,
                       const AreaFunction& tract, const VoiceDomainGeometry& g);
 } // namespace fsai::mesh

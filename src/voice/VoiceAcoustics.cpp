@@ -2,6 +2,7 @@
 #include "VoiceAcoustics.h"
 #include "VoiceScene.h"
 #include "VoiceSource.h"
+#include <acoustics/MonopoleMicrophone.h>
 #include <acoustics/TubeTract.h>
 #include <cmath>
 #include <common/errors.h>
@@ -71,10 +72,15 @@ public:
       : _sound(fsai::voice::make_sound(comm, s, profile, tract)),
         _source(comm, s.source, s.glottis, profile, glottis.flow_channel(),
                 _sound.mesh, *_sound.solver, s.voice.dt),
-        _probes(_sound.mesh.mesh,
-                {{_sound.x_lips, 0.0, 0.0},
-                 {_sound.x_lips + s.voice.mic_distance, 0.0, 0.0}})
+        _probes(_sound.mesh.mesh, probe_points(s, _sound.x_lips))
   {
+    if (!s.domain.radiation_region)
+    {
+      // The half planar model's lip flow per unit depth, times 2 L_g
+      _depth = 2 * s.glottis.geometry.depth;
+      _mic.emplace(s.voice.mic_distance, s.wave.c0, s.wave.rho0, s.voice.dt,
+                   0.0);
+    }
   }
   void start(const GlottisModel& glottis, double q_last) override
   {
@@ -86,23 +92,29 @@ public:
     _source.apply(fold(glottis), glottis.flow_channel(), s);
     _sound.solver->step();
     _p = _probes.values(*_sound.solver->pressure());
+    if (_mic)
+      _mic->record(_depth * _sound.solver->radiated_flow_rate());
   }
   double p_lips() const override { return _p[0]; }
-  double p_mic() const override { return _p[1]; }
+  double p_mic() const override { return _mic ? _mic->pressure() : _p[1]; }
   std::int64_t dofs() const override { return _sound.solver->dofs(); }
-  void checkpoint(nlohmann::json&,
+  void checkpoint(nlohmann::json& scalars,
                   std::optional<fsai::io::RankState>& fields) const override
   {
     if (!fields)
       fields.emplace();
     _sound.solver->save(*fields, "sound.");
     _source.save(*fields);
+    if (_mic)
+      scalars["mic"] = _mic->save();
   }
-  void restore(const nlohmann::json&,
+  void restore(const nlohmann::json& checkpoint,
                const std::vector<fsai::io::RankState>& fields) override
   {
     _sound.solver->load(fields, "sound.");
     _source.load(fields);
+    if (_mic)
+      _mic->load(checkpoint.at("mic"));
   }
   std::vector<fsai::io::TimeSeriesWriter::Field> fields() const override
   {
@@ -110,6 +122,15 @@ public:
   }
 
 private:
+  /// The lips, and the microphone when it is in the radiation region
+  static std::vector<std::array<double, 3>>
+  probe_points(const fsai::voice::VoiceScene& s, double x_lips)
+  {
+    std::vector<std::array<double, 3>> x = {{x_lips, 0.0, 0.0}};
+    if (s.domain.radiation_region)
+      x.push_back({x_lips + s.voice.mic_distance, 0.0, 0.0});
+    return x;
+  }
   static const fsai::glottis::TwoDofFold& fold(const GlottisModel& glottis)
   {
     const auto* f = glottis.two_dof_fold();
@@ -121,6 +142,9 @@ private:
   fsai::voice::VoiceSource _source;
   fsai::io::PointProbes _probes;
   std::vector<double> _p{0.0, 0.0};
+  /// With the piston load (A11): the monopole of the lip flow
+  std::optional<fsai::acoustics::MonopoleMicrophone> _mic;
+  double _depth = 0;
 };
 } // namespace
 

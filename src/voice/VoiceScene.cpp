@@ -50,9 +50,11 @@ void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
   p.add("dt", dt, "time step of flow and sound [s]");
   p.add("quick", quick,
         "short coarse run for tests (coarser meshes, 0.04 s, dt 5e-5)");
-  p.add_choice("radiation", radiation, {"sommerfeld", "pml"},
-               "radiation boundary: Sommerfeld (with the curvature term) "
-               "or an absorbing layer");
+  p.add_choice("radiation", radiation, {"sommerfeld", "pml", "piston"},
+               "--acoustics fe: a planar radiation region closed by "
+               "Sommerfeld (with the curvature term) or an absorbing layer, "
+               "or the tract ending at the lips with a flanged piston's load "
+               "and the microphone hearing its monopole (A11)");
   p.add("layer", layer, "absorbing-layer thickness for --radiation pml [m]");
   p.add("voice.yielding_walls", yielding_walls,
         "supraglottal tract walls yield (--wave.wall_*; false: "
@@ -188,10 +190,12 @@ void fsai::voice::VoiceScene::validate()
   elastic.validate();
   wave.validate();
   domain.layer = voice.radiation == "pml" ? voice.layer : 0.0;
+  domain.radiation_region = voice.radiation != "piston";
   domain.channel
       = voice.tract_start == "outlet" ? glottis.geometry.outlet_length : 0.0;
   domain.validate();
-  fsai::require(voice.acoustics == "1d" or voice.mic_distance < domain.radius,
+  fsai::require(voice.acoustics == "1d" or !domain.radiation_region
+                    or voice.mic_distance < domain.radius,
                 "--mic_distance",
                 "inside the radiation region (< --voice.radius) with "
                 "--acoustics fe",
@@ -324,8 +328,17 @@ fsai::voice::Sound fsai::voice::make_sound(MPI_Comm comm, const VoiceScene& s,
                                            and std::abs(x[0] - x_step) > 1e-9;
                                   });
   }
-  wb.radiation = facets("radiation");
-  wb.radiation_beta = 0.5 / (vg.radius + vg.layer); // planar: 1/(2R)
+  if (vg.radiation_region)
+  {
+    wb.radiation = facets("radiation");
+    wb.radiation_beta = 0.5 / (vg.radius + vg.layer); // planar: 1/(2R)
+  }
+  else
+  {
+    // The lips' opening, A11: its area as the mesh's (the smooth reading)
+    wb.piston = facets("lips");
+    wb.piston_area = tract.area.area_at(tract.area.length(), true);
+  }
   wb.vibrating = facets("fold");
   std::shared_ptr<dolfinx::fem::Function<double>> sigma;
   out.x_lips = geo.fold_length + tract.area.length();

@@ -55,7 +55,11 @@ struct VoiceParameters
   double duration = 0.1;     ///< [s]
   double dt = 2e-5;          ///< [s]
   bool quick = false;
-  std::string radiation = "sommerfeld";
+  /// --acoustics fe: "piston" (the tract ends at the lips under the
+  /// flanged piston's load, A11: its formants are the area function's) or
+  /// a planar radiation region ("sommerfeld", "pml"), whose 2D radiation
+  /// detunes wide-mouthed vowels ([a] F1/F2 merge, docs/voice.md)
+  std::string radiation = "piston";
   std::string subglottal = "absorbing";
   bool yielding_walls = true;
   double layer = 0.02;        ///< [m]

@@ -230,9 +230,23 @@ fsai::voice::sound_measures(const std::vector<double>& p, double dt,
   out.formant_method = "closed-phase";
   if (res.empty())
   {
+    // The periodic part: every cycle of the flow resampled to the mean
+    // period's n_T samples and averaged, repeated: a cycle that ends where
+    // it began. (HNR's cycles above are cut to the shortest one; repeated,
+    // such a cut cycle jumps at every joint, a click train whose broadband
+    // spectrum took LPC's poles from F1 once the cycles' lengths varied.)
+    const std::size_t nT = std::max<std::size_t>(
+        8, std::size_t(std::lround((b.back() - b.front()) / double(N) / dt)));
+    std::vector<double> cycle(nT, 0.0);
+    for (std::size_t c = 0; c < N; ++c)
+      for (std::size_t j = 0; j < nT; ++j)
+        cycle[j]
+            += ac::sample_at(p, dt,
+                             b[c] + (b[c + 1] - b[c]) * double(j) / double(nT))
+               / double(N);
     std::vector<double> voiced;
     while (voiced.size() < std::max(p.size(), 2 * n))
-      voiced.insert(voiced.end(), m.begin(), m.end());
+      voiced.insert(voiced.end(), cycle.begin(), cycle.end());
     res = ac::lpc_resonances(voiced, dt);
     out.formant_method = "periodic-part";
   }
