@@ -17,6 +17,7 @@ against the tract's own (1D, closed glottis).
 usage: bench/voice_fidelity.py [BUILD_DIR] [--levels reduced,mixed,full]
                                [--vowels u,a,i] [--p_sub 800,1200]
                                [--radiation piston|sommerfeld] [--rerun]
+                               [--cached]
 writes bench/results/voice_fidelity.csv and voice_fidelity.png; run folders
 bench/results/run_fidelity_<level>_<vowel>_<p_sub>/
 """
@@ -42,6 +43,8 @@ ap.add_argument("--radiation", default="piston",
                 help="the FE levels' lip end (fsai_demo --radiation); other than "
                      "the default, its runs and table get the suffix _RADIATION")
 ap.add_argument("--rerun", action="store_true")
+ap.add_argument("--cached", action="store_true",
+                help="only the runs already made (no new run)")
 args = ap.parse_args()
 exe = os.path.join(args.build, "demos", "fsai_demo")
 out = os.path.join(here, "results")
@@ -67,6 +70,8 @@ def run(level, vowel, p_sub):
                           "--report=false", "--output", d]
     if ranks > 1:
         cmd = ["mpirun", "-n", str(ranks)] + cmd
+    if args.cached and not os.path.exists(os.path.join(d, "summary.json")):
+        return None
     s = timed_run(cmd, d, args.rerun, env)
     if s is None:
         return None

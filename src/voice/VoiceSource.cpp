@@ -181,8 +181,16 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
 void fsai::voice::VoiceSource::start(const glottis::TwoDofFold& fold,
                                      double q_last)
 {
-  _qdot_prev = fold.qdot();
+  _u_wall_prev = wall_velocity(fold, slit_surface(fold));
   _q_monopole = q_last;
+}
+//-----------------------------------------------------------------------------
+std::vector<std::array<double, 2>>
+fsai::voice::VoiceSource::slit_surface(const glottis::TwoDofFold& fold) const
+{
+  if (!_par.glottal_slit)
+    return {};
+  return glottis::moved_surface(_profile, fold.motion());
 }
 //-----------------------------------------------------------------------------
 void fsai::voice::VoiceSource::apply(const glottis::TwoDofFold& fold,
@@ -205,12 +213,9 @@ void fsai::voice::VoiceSource::apply(const glottis::TwoDofFold& fold,
       vo[i] = vn[i];
     }
   }
-  std::vector<std::array<double, 2>> now;
+  const std::vector<std::array<double, 2>> now = slit_surface(fold);
   if (_par.glottal_slit)
-  {
-    now = glottis::moved_surface(_profile, fold.motion());
     set_slit_law(now, s);
-  }
   if (_par.monopole)
   {
     // dQ/dt over the step (the midpoint rate, as the wall's q̈). A step
@@ -267,24 +272,42 @@ void fsai::voice::VoiceSource::set_wall_acceleration(
     const glottis::TwoDofFold& fold,
     const std::vector<std::array<double, 2>>& surface)
 {
-  // Tapered rigid motion (as the flow boundary), a = w (∂u/∂h q̈_h + ∂u/∂φ
-  // q̈_φ) with the step's mean acceleration q̈ = (q̇_{n+1} − q̇_n)/Δt =
-  // (q̈_n + q̈_{n+1})/2. Newmark's end-of-step q̈ carries an undamped (−1)^n
-  // part whenever the load jumps (contact, porous switching); the mean is
-  // free of it (the trapezoidal rule's own acceleration)
-  const auto m = fold.motion();
-  const std::array<double, 2> qdd = {(fold.qdot()[0] - _qdot_prev[0]) / _dt,
-                                     (fold.qdot()[1] - _qdot_prev[1]) / _dt};
-  _qdot_prev = fold.qdot();
+  // The step's mean rate of the wall's velocity, a = (u_{n+1} − u_n)/Δt
+  // (the trapezoidal rule's own acceleration: Newmark's end-of-step q̈
+  // carries an undamped (−1)^n part whenever the load jumps). The fade
+  // acts on the velocity u, not on the acceleration: a faded acceleration
+  // integrates to a velocity that gains v_closing − v_opening every cycle
+  // (the fade turns off while the wall moves in and on while it moves
+  // out), a steady drift that the slit law modulated into a sound growing
+  // through the run (docs/voice.md)
+  const std::vector<double> u = wall_velocity(fold, surface);
   auto a = _sound.wall_acceleration().x()->mutable_array();
-  for (std::size_t i = 0; _par.wall and i < _fold_dofs.size(); ++i)
+  for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
+    for (int c = 0; c < 2; ++c)
+      a[2 * _fold_dofs[i] + c] = (u[2 * i + c] - _u_wall_prev[2 * i + c]) / _dt;
+  _u_wall_prev = u;
+}
+//-----------------------------------------------------------------------------
+std::vector<double> fsai::voice::VoiceSource::wall_velocity(
+    const glottis::TwoDofFold& fold,
+    const std::vector<std::array<double, 2>>& surface) const
+{
+  // Tapered rigid motion (as the flow boundary), u = w f (∂u/∂h q̇_h +
+  // ∂u/∂φ q̇_φ), f = open_fraction (A2)
+  std::vector<double> u(2 * _fold_dofs.size(), 0.0);
+  if (!_par.wall)
+    return u;
+  const auto m = fold.motion();
+  const auto qd = fold.qdot();
+  for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
   {
     const auto d = m.derivatives(_fold_X[i]);
     const double w
         = _profile.weight(_fold_X[i]) * open_fraction(_fold_X[i][0], surface);
     for (int c = 0; c < 2; ++c)
-      a[2 * _fold_dofs[i] + c] = w * (d[0][c] * qdd[0] + d[1][c] * qdd[1]);
+      u[2 * i + c] = w * (d[0][c] * qd[0] + d[1][c] * qd[1]);
   }
+  return u;
 }
 //-----------------------------------------------------------------------------
 void fsai::voice::VoiceSource::save(io::RankState& state) const

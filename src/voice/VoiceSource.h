@@ -85,6 +85,15 @@ private:
                     const glottis::Sample& s);
   void set_wall_acceleration(const glottis::TwoDofFold& fold,
                              const std::vector<std::array<double, 2>>& surface);
+  /// The fold wall's velocity at the fold dofs (2 per dof), tapered and
+  /// faded by open_fraction, for the fold's current state
+  std::vector<double>
+  wall_velocity(const glottis::TwoDofFold& fold,
+                const std::vector<std::array<double, 2>>& surface) const;
+  /// The fold's surface for the slit law and the fade (empty without the
+  /// slit law, which the fade then ignores)
+  std::vector<std::array<double, 2>>
+  slit_surface(const glottis::TwoDofFold& fold) const;
   double open_fraction(double x,
                        const std::vector<std::array<double, 2>>& surface) const;
 
@@ -99,7 +108,7 @@ private:
   std::vector<double> _slit_x, _slit_g0, _inertia, _resistance;
   std::vector<std::int32_t> _fold_dofs;
   std::vector<std::array<double, 2>> _fold_X;
-  std::array<double, 2> _qdot_prev{};
+  std::vector<double> _u_wall_prev; // wall_velocity of the last step
   double _q_monopole = 0;
 };
 
