@@ -1,15 +1,16 @@
 #!/usr/bin/python3
 """The voice with the 2-DOF and with the elastic fold, side by side
-(docs/voice.md, "The elastic fold in the voice"): the reduced fidelity
-(Bernoulli flow, 1D tract), the same p_sub and vowel, clamped fold ends
+(docs/voice.md, "The elastic fold in the voice"): the Bernoulli flow with
+the 1D tract (reduced) and the FE tract (mixed), the same p_sub and vowel,
+clamped fold ends
 for the elastic fold (its plane-strain fold does not close every cycle at
 800 Pa, docs/glottis.md). f0, open quotient, peak and mean flow, MFDR, SPL,
 H1–H2 and the sound's F1/F2 (summary.json "voice").
 
 usage: bench/voice_folds.py [BUILD_DIR] [--p_sub 800] [--vowel u]
-                            [--duration 0.3] [--rerun]
+                            [--duration 0.3] [--acoustics 1d,fe] [--rerun]
 writes bench/results/voice_folds.csv; run folders
-bench/results/run_folds_<fold>_<p_sub>/
+bench/results/run_folds_<fold>_<p_sub>[_fe]/
 """
 import argparse
 import csv
@@ -23,6 +24,8 @@ ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
 ap.add_argument("--p_sub", default="800")
 ap.add_argument("--vowel", default="u")
 ap.add_argument("--duration", default="0.3")
+ap.add_argument("--acoustics", default="1d,fe",
+                help="the sound's fidelities (fsai_demo --acoustics)")
 ap.add_argument("--rerun", action="store_true")
 args = ap.parse_args()
 exe = os.path.join(args.build, "demos", "fsai_demo")
@@ -30,30 +33,32 @@ out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
 folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]}
 rows = []
-for p in args.p_sub.split(","):
-    for fold, opts in folds.items():
-        d = os.path.join(out, f"run_folds_{fold}_{p}")
-        s = timed_run([exe, "--flow", "bernoulli", "--acoustics", "1d",
-                       "--vowel", args.vowel, "--p-sub", p,
-                       "--duration", args.duration, "--report=false",
-                       "--output", d] + opts, d, args.rerun)
-        if s is None:
-            raise SystemExit(1)
-        wall = s["process_wall_s"]
-        v = s["voice"]
-        F = (v.get("formants_hz") or []) + [float("nan")] * 2
-        rows.append(dict(fold=fold, p_sub=p, f0_hz=v["f0_hz"], sound_f0_hz=s["f0_hz"],
-                         oq=v["open_quotient"], q_peak_ls=v["q_peak_ls"],
-                         q_mean_ls=v["q_mean_ls"], mfdr_ls2=v["mfdr_ls2"],
-                         spl_db=v["spl_db"], h1_h2_db=v["h1_h2_db"],
-                         jitter_pct=v["jitter_pct"], f1_hz=F[0], f2_hz=F[1],
-                         wall_s=wall))
-        r = rows[-1]
-        print(f"{fold:8s} {p} Pa: f0 {r['f0_hz']:.1f} Hz (sound {r['sound_f0_hz']:.1f}), "
-              f"OQ {r['oq']:.3f}, Q peak {r['q_peak_ls']:.3f} mean {r['q_mean_ls']:.3f} l/s, "
-              f"MFDR {r['mfdr_ls2']:.0f} l/s², SPL {r['spl_db']:.1f} dB, H1-H2 {r['h1_h2_db']:.1f} dB, "
-              f"F1/F2 {r['f1_hz']:.0f}/{r['f2_hz']:.0f} Hz, jitter {r['jitter_pct']:.2f} %, "
-              f"wall {wall:.1f} s", flush=True)
+runs = [(p, ac, fold) for p in args.p_sub.split(",")
+        for ac in args.acoustics.split(",") for fold in folds]
+for p, ac, fold in runs:
+    opts = folds[fold]
+    d = os.path.join(out, f"run_folds_{fold}_{p}" + ("" if ac == "1d" else f"_{ac}"))
+    s = timed_run([exe, "--flow", "bernoulli", "--acoustics", ac,
+                   "--vowel", args.vowel, "--p-sub", p,
+                   "--duration", args.duration, "--report=false",
+                   "--output", d] + opts, d, args.rerun)
+    if s is None:
+        raise SystemExit(1)
+    wall = s["process_wall_s"]
+    v = s["voice"]
+    F = (v.get("formants_hz") or []) + [float("nan")] * 2
+    rows.append(dict(fold=fold, acoustics=ac, p_sub=p, f0_hz=v["f0_hz"], sound_f0_hz=s["f0_hz"],
+                     oq=v["open_quotient"], q_peak_ls=v["q_peak_ls"],
+                     q_mean_ls=v["q_mean_ls"], mfdr_ls2=v["mfdr_ls2"],
+                     spl_db=v["spl_db"], h1_h2_db=v["h1_h2_db"],
+                     jitter_pct=v["jitter_pct"], f1_hz=F[0], f2_hz=F[1],
+                     wall_s=wall))
+    r = rows[-1]
+    print(f"{fold:8s} {ac} {p} Pa: f0 {r['f0_hz']:.1f} Hz (sound {r['sound_f0_hz']:.1f}), "
+          f"OQ {r['oq']:.3f}, Q peak {r['q_peak_ls']:.3f} mean {r['q_mean_ls']:.3f} l/s, "
+          f"MFDR {r['mfdr_ls2']:.0f} l/s², SPL {r['spl_db']:.1f} dB, H1-H2 {r['h1_h2_db']:.1f} dB, "
+          f"F1/F2 {r['f1_hz']:.0f}/{r['f2_hz']:.0f} Hz, jitter {r['jitter_pct']:.2f} %, "
+          f"wall {wall:.1f} s", flush=True)
 with open(os.path.join(out, "voice_folds.csv"), "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
     w.writeheader()

@@ -253,7 +253,8 @@ fsai::acoustics::lpc_resonances(const std::vector<double>& x, double dt,
 //-----------------------------------------------------------------------------
 std::vector<fsai::acoustics::Resonance>
 fsai::acoustics::predictor_resonances(const std::vector<double>& a, double fs,
-                                      double f_max, double max_bandwidth)
+                                      double f_max, double max_bandwidth,
+                                      bool reflect_unstable)
 {
   // Roots of z^p + a1 z^(p-1) + ... + ap: companion matrix eigenvalues
   const int order = int(a.size()) - 1;
@@ -268,8 +269,12 @@ fsai::acoustics::predictor_resonances(const std::vector<double>& a, double fs,
   {
     if (z[i].imag() <= 0)
       continue;
+    // A root outside the unit circle, mirrored to 1/z*: same frequency,
+    // same |ln|z||, the spectrum's magnitude unchanged up to a constant
+    const double r = std::abs(z[i]);
+    const double ri = reflect_unstable and r > 1 ? 1 / r : r;
     const double fi = std::arg(z[i]) * fs / (2 * M_PI);
-    const double bi = -std::log(std::abs(z[i])) * fs / M_PI;
+    const double bi = -std::log(ri) * fs / M_PI;
     if (fi > 90.0 and bi > 0 and bi < max_bandwidth and fi < f_max - 100.0)
       f.push_back({fi, bi});
   }
@@ -282,25 +287,30 @@ std::vector<fsai::acoustics::Resonance>
 fsai::acoustics::closed_phase_resonances(
     const std::vector<double>& x, double dt,
     const std::vector<std::array<double, 2>>& intervals, double f_max,
-    int order, double max_bandwidth)
+    int order, double max_bandwidth, double guard)
 {
   const double fs = 2 * f_max;
   const std::vector<double> y = resample(demeaned(x), dt, fs);
-  // The rows s(n) + Σ a_k s(n − k) = 0 of every interval, with n − order
-  // at its start or later: the regressors stay inside the interval too,
-  // which keeps the closing excitation (spread over a few samples by the
-  // anti-aliasing filter) out of the fit. Least squares, no window
+  // The rows s(n) + Σ a_k s(n − k) = 0 for n inside every interval from
+  // its start + guard on: the predicted sample is source-free, its
+  // regressors may lie before the interval (the excitation there is only
+  // the past the tract rings from). The guard keeps out the closing
+  // excitation that the anti-aliasing filter spreads past the closure.
+  // Least squares, no window
+  const std::size_t skip = std::size_t(std::ceil(guard * fs - 1e-9));
   std::vector<std::array<std::size_t, 2>> spans;
   std::size_t rows = 0;
   for (const auto& iv : intervals)
   {
-    const std::size_t a = std::size_t(std::ceil(std::max(0.0, iv[0]) * fs));
+    const std::size_t a = std::max<std::size_t>(
+        std::size_t(std::ceil(std::max(0.0, iv[0]) * fs)) + skip,
+        std::size_t(order));
     const std::size_t b = std::min(
         y.size(), std::size_t(std::floor(std::max(0.0, iv[1]) * fs)) + 1);
-    if (b > a + std::size_t(order) + 1)
+    if (b > a)
     {
-      spans.push_back({a + std::size_t(order), b});
-      rows += b - a - std::size_t(order);
+      spans.push_back({a, b});
+      rows += b - a;
     }
   }
   if (rows < std::size_t(3 * order))
@@ -319,7 +329,10 @@ fsai::acoustics::closed_phase_resonances(
   std::vector<double> p(order + 1, 1.0);
   for (int k = 1; k <= order; ++k)
     p[k] = sol(k - 1);
-  return predictor_resonances(p, fs, f_max, max_bandwidth);
+  // The covariance method does not guarantee a stable predictor: over a
+  // short closed phase a resonance may fit as growing (a closure spread
+  // over the first samples); its frequency stands, so it is mirrored
+  return predictor_resonances(p, fs, f_max, max_bandwidth, true);
 }
 //-----------------------------------------------------------------------------
 double fsai::acoustics::spl_db(const std::vector<double>& x)

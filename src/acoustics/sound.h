@@ -83,25 +83,29 @@ std::vector<double> periodic_part(const std::vector<double>& x, double dt,
 /// Resonances of the predictor 1 + a1 z⁻¹ + … + ap z⁻ᵖ (a[0] = 1) at the
 /// sample rate fs: roots (companion-matrix eigenvalues) inside the unit
 /// circle with frequency in (90, f_max − 100) Hz and bandwidth
-/// −ln|z| fs/π below max_bandwidth, in ascending order
+/// −ln|z| fs/π below max_bandwidth, in ascending order; roots outside the
+/// circle are dropped, or with `reflect_unstable` mirrored to 1/z*
 std::vector<Resonance> predictor_resonances(const std::vector<double>& a,
                                             double fs, double f_max,
-                                            double max_bandwidth);
+                                            double max_bandwidth,
+                                            bool reflect_unstable = false);
 
 /// Formants by closed-phase covariance LPC (A10): x (sampled every dt from
 /// t = 0) resampled to 2 f_max, and the predictor of `order` fitted by least
 /// squares to the samples inside the `intervals` (times [s]) only, where
-/// the glottis is closed and the tract rings freely (regressors inside the
-/// interval too: an interval gives equations only beyond its first `order`
-/// samples): its poles are the
-/// tract's, without the bias of the harmonics that the autocorrelation
-/// method has (no window, no pre-emphasis: the free decay has no source
-/// tilt). Empty if the intervals hold fewer than 3 × order equations.
+/// the glottis is closed and the tract rings freely, from `guard` [s] after
+/// each interval's start (the closing excitation, spread by the
+/// anti-aliasing filter); the regressors may precede the interval, so a
+/// closed phase shorter than `order` samples still gives equations. Its
+/// poles are the tract's, without the bias of the harmonics that the
+/// autocorrelation method has (no window, no pre-emphasis: the free decay
+/// has no source tilt); unstable roots are mirrored into the unit circle.
+/// Empty if the intervals hold fewer than 3 × order equations.
 std::vector<Resonance>
 closed_phase_resonances(const std::vector<double>& x, double dt,
                         const std::vector<std::array<double, 2>>& intervals,
                         double f_max = 5000.0, int order = 12,
-                        double max_bandwidth = 500.0);
+                        double max_bandwidth = 500.0, double guard = 0.3e-3);
 
 /// Sound pressure level 20 log10(p_rms / 20 µPa) of x (mean removed)
 double spl_db(const std::vector<double>& x);

@@ -57,6 +57,7 @@ public:
   void describe(io::RunSummary& summary) override;
   ElasticFold& fold() { return _fold; }
   ElasticFold* elastic_fold() override { return &_fold; }
+  const ElasticFold* elastic_fold() const override { return &_fold; }
 
 private:
   /// Flow and pressure along the moved surface x at time t (p_sub ramped)

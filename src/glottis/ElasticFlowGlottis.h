@@ -79,6 +79,7 @@ public:
   void describe(io::RunSummary& summary) override;
   ElasticFold& fold() { return _fold; }
   ElasticFold* elastic_fold() override { return &_fold; }
+  const ElasticFold* elastic_fold() const override { return &_fold; }
   /// Pressure at the fold's ordered surface points (the fold's load, traction
   /// −p n) of the last evaluation [Pa]
   const std::vector<double>& surface_load() const { return _p; }

@@ -240,6 +240,12 @@ std::vector<double> fsai::glottis::ElasticFold::surface_displacement() const
   return owned_surface_values(*_solver->displacement());
 }
 //-----------------------------------------------------------------------------
+std::vector<std::array<double, 2>>
+fsai::glottis::ElasticFold::surface_velocity() const
+{
+  return surface_values(*_solver->velocity());
+}
+//-----------------------------------------------------------------------------
 std::vector<double> fsai::glottis::ElasticFold::surface_prediction() const
 {
   const auto u = _solver->displacement()->x()->array();

@@ -134,6 +134,8 @@ public:
   }
   /// This rank's owned surface displacement (x, y per owned surface point)
   std::vector<double> surface_displacement() const;
+  /// The velocity at the ordered surface points (collective)
+  std::vector<std::array<double, 2>> surface_velocity() const;
   /// Its Newmark predictor u + Δt v + ½Δt² a (the next step's first guess)
   std::vector<double> surface_prediction() const;
   /// The ordered surface of all ranks moved by this rank's owned

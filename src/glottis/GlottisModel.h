@@ -59,6 +59,7 @@ public:
   virtual std::vector<io::TimeSeriesWriter::Field> fold_fields() { return {}; }
   /// The elastic fold of the elastic variants (nullptr for the 2-DOF fold)
   virtual ElasticFold* elastic_fold() { return nullptr; }
+  virtual const ElasticFold* elastic_fold() const { return nullptr; }
   /// The 2-DOF fold of the 2-DOF variants (nullptr for the elastic fold)
   virtual const TwoDofFold* two_dof_fold() const { return nullptr; }
   /// The FE flow's channel (nullptr for the Bernoulli flow)

@@ -8,6 +8,7 @@
 #include <common/errors.h>
 #include <common/timer.h>
 #include <fmt/format.h>
+#include <glottis/ElasticFold.h>
 #include <glottis/FlowChannel.h>
 #include <glottis/TwoDofFold.h>
 #include <io/PointProbes.h>
@@ -62,14 +63,15 @@ private:
 };
 
 /// --acoustics fe: the wave equation with VoiceSource's sources; the
-/// 2-DOF fold's rigid motion moves the slit and the fold's wall
+/// fold (2-DOF or elastic) moves the slit and the fold's wall
 class FeAcoustics : public fsai::voice::VoiceAcoustics
 {
 public:
   FeAcoustics(MPI_Comm comm, const fsai::voice::VoiceScene& s,
               const fsai::glottis::FoldProfile& profile,
               const fsai::voice::VoiceTract& tract, const GlottisModel& glottis)
-      : _sound(fsai::voice::make_sound(comm, s, profile, tract)),
+      : _profile(profile),
+        _sound(fsai::voice::make_sound(comm, s, profile, tract)),
         _source(comm, s.source, s.glottis, profile, glottis.flow_channel(),
                 _sound.mesh, *_sound.solver, s.voice.dt),
         _probes(_sound.mesh.mesh, probe_points(s, _sound.x_lips))
@@ -84,12 +86,12 @@ public:
   }
   void start(const GlottisModel& glottis, double q_last) override
   {
-    _source.start(fold(glottis), q_last);
+    _source.start(wall(glottis), q_last);
   }
   void step(const GlottisModel& glottis, const Sample& s) override
   {
     fsai::common::ScopedTimer timer("demo: sound step");
-    _source.apply(fold(glottis), glottis.flow_channel(), s);
+    _source.apply(wall(glottis), glottis.flow_channel(), s);
     _sound.solver->step();
     _p = _probes.values(*_sound.solver->pressure());
     if (_mic)
@@ -131,13 +133,17 @@ private:
       x.push_back({x_lips + s.voice.mic_distance, 0.0, 0.0});
     return x;
   }
-  static const fsai::glottis::TwoDofFold& fold(const GlottisModel& glottis)
+  /// The fold's wall as the sources see it (collective for the elastic
+  /// fold)
+  fsai::voice::FoldWall wall(const GlottisModel& glottis) const
   {
-    const auto* f = glottis.two_dof_fold();
-    if (!f)
-      throw std::logic_error("FE acoustics without a 2-DOF fold");
-    return *f;
+    if (const auto* f = glottis.two_dof_fold())
+      return fsai::voice::fold_wall(*f, _profile);
+    if (const auto* f = glottis.elastic_fold())
+      return fsai::voice::fold_wall(*f);
+    throw std::logic_error("FE acoustics: a glottis without a fold");
   }
+  const fsai::glottis::FoldProfile& _profile;
   fsai::voice::Sound _sound;
   fsai::voice::VoiceSource _source;
   fsai::io::PointProbes _probes;
@@ -155,7 +161,6 @@ std::unique_ptr<fsai::voice::VoiceAcoustics> fsai::voice::make_acoustics(
 {
   if (s.voice.acoustics == "fe")
   {
-    // VoiceScene::validate refuses --fold elastic here
     return std::make_unique<FeAcoustics>(comm, s, profile, tract, glottis);
   }
   acoustics::TubeTractParameters p;

@@ -90,10 +90,6 @@ void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
 //-----------------------------------------------------------------------------
 void fsai::voice::VoiceParameters::validate() const
 {
-  fsai::require(!(acoustics == "fe" and fold == "elastic"), "--fold elastic",
-                "used with --acoustics 1d (the FE sound's sources move "
-                "with the 2-DOF fold's rigid motion)",
-                fold);
   fsai::require(ramp >= 0, "--ramp", ">= 0", ramp);
   fsai::require_positive("--p-sub", p_sub);
   fsai::require_positive("--duration", duration);
@@ -406,11 +402,11 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
   // Closed-phase analysis (A10): over the closed phases the tract rings
   // freely. The FE sound's closed phase holds the fold wall's motion (A2)
   // and the slit at g_min (A5); once the wall's velocity, not its
-  // acceleration, was faded it is free enough: the mixed voice's F1/F2
-  // within 7.7 % of the tract's for [u], [a], [i] (the periodic part:
-  // [a] +15 / −12 %, [u] at 1200 Pa F1 +22 %, docs/voice.md). Closed
-  // phases shorter than the fit needs (the FE flow's, about 1.2 ms) leave
-  // the periodic part
+  // acceleration, was faded it is free enough at the mixed level (F1/F2
+  // within 3.4 % of the tract's for [u], [a], [i]; the periodic part:
+  // [a] +15 / −12 %, [u] at 1200 Pa F1 +22 %, docs/voice.md). The FE
+  // flow's closed phases (about 1.2 ms, fewer samples than the predictor's
+  // order) give equations because the regressors may precede them
   const auto sm = sound_measures(mic, vp.dt, fm.boundaries, fm.closed, delay);
   summary.set("voice", voice_json(fm, sm, vp.mic_distance));
   const double spl = sm.spl_db;

@@ -7,6 +7,7 @@
 #include <common/timer.h>
 #include <dolfinx/fem/utils.h>
 #include <glottis/BernoulliFlow.h>
+#include <glottis/ElasticFold.h>
 #include <glottis/waveform.h>
 #include <io/field_state.h>
 #include <limits>
@@ -178,22 +179,21 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
       sound.flow_velocity().function_space());
 }
 //-----------------------------------------------------------------------------
-void fsai::voice::VoiceSource::start(const glottis::TwoDofFold& fold,
-                                     double q_last)
+void fsai::voice::VoiceSource::start(const FoldWall& fold, double q_last)
 {
   _u_wall_prev = wall_velocity(fold, slit_surface(fold));
   _q_monopole = q_last;
 }
 //-----------------------------------------------------------------------------
 std::vector<std::array<double, 2>>
-fsai::voice::VoiceSource::slit_surface(const glottis::TwoDofFold& fold) const
+fsai::voice::VoiceSource::slit_surface(const FoldWall& fold) const
 {
   if (!_par.glottal_slit)
     return {};
-  return glottis::moved_surface(_profile, fold.motion());
+  return fold.surface;
 }
 //-----------------------------------------------------------------------------
-void fsai::voice::VoiceSource::apply(const glottis::TwoDofFold& fold,
+void fsai::voice::VoiceSource::apply(const FoldWall& fold,
                                      const glottis::FlowChannel* channel,
                                      const glottis::Sample& s)
 {
@@ -269,8 +269,7 @@ double fsai::voice::VoiceSource::open_fraction(
 }
 //-----------------------------------------------------------------------------
 void fsai::voice::VoiceSource::set_wall_acceleration(
-    const glottis::TwoDofFold& fold,
-    const std::vector<std::array<double, 2>>& surface)
+    const FoldWall& fold, const std::vector<std::array<double, 2>>& surface)
 {
   // The step's mean rate of the wall's velocity, a = (u_{n+1} − u_n)/Δt
   // (the trapezoidal rule's own acceleration: Newmark's end-of-step q̈
@@ -289,25 +288,75 @@ void fsai::voice::VoiceSource::set_wall_acceleration(
 }
 //-----------------------------------------------------------------------------
 std::vector<double> fsai::voice::VoiceSource::wall_velocity(
-    const glottis::TwoDofFold& fold,
+    const FoldWall& fold,
     const std::vector<std::array<double, 2>>& surface) const
 {
-  // Tapered rigid motion (as the flow boundary), u = w f (∂u/∂h q̇_h +
-  // ∂u/∂φ q̇_φ), f = open_fraction (A2)
+  // The wall's velocity u faded by f = open_fraction (A2)
   std::vector<double> u(2 * _fold_dofs.size(), 0.0);
   if (!_par.wall)
     return u;
-  const auto m = fold.motion();
-  const auto qd = fold.qdot();
   for (std::size_t i = 0; i < _fold_dofs.size(); ++i)
   {
-    const auto d = m.derivatives(_fold_X[i]);
-    const double w
-        = _profile.weight(_fold_X[i]) * open_fraction(_fold_X[i][0], surface);
+    const auto v = fold.velocity(_fold_X[i]);
+    const double f = open_fraction(_fold_X[i][0], surface);
     for (int c = 0; c < 2; ++c)
-      u[2 * i + c] = w * (d[0][c] * qd[0] + d[1][c] * qd[1]);
+      u[2 * i + c] = f * v[c];
   }
   return u;
+}
+//-----------------------------------------------------------------------------
+fsai::voice::FoldWall
+fsai::voice::fold_wall(const glottis::TwoDofFold& fold,
+                       const glottis::FoldProfile& profile)
+{
+  // Tapered rigid motion (as the flow boundary), u = w (∂u/∂h q̇_h +
+  // ∂u/∂φ q̇_φ)
+  const auto m = fold.motion();
+  const auto qd = fold.qdot();
+  FoldWall w;
+  w.surface = glottis::moved_surface(profile, m);
+  w.velocity = [m, qd, &profile](const std::array<double, 2>& X)
+  {
+    const auto d = m.derivatives(X);
+    const double wt = profile.weight(X);
+    return std::array<double, 2>{wt * (d[0][0] * qd[0] + d[1][0] * qd[1]),
+                                 wt * (d[0][1] * qd[0] + d[1][1] * qd[1])};
+  };
+  return w;
+}
+//-----------------------------------------------------------------------------
+fsai::voice::FoldWall fsai::voice::fold_wall(const glottis::ElasticFold& fold)
+{
+  FoldWall w;
+  w.surface = fold.moved_surface(fold.surface_displacement());
+  const auto& X0 = fold.surface_reference();
+  w.velocity = [X0, v = fold.surface_velocity()](const std::array<double, 2>& X)
+  {
+    // The nearest point of the rest surface's polyline, its segment k at
+    // the fraction t
+    double best = std::numeric_limits<double>::infinity(), tb = 0;
+    std::size_t kb = 0;
+    for (std::size_t k = 0; k + 1 < X0.size(); ++k)
+    {
+      const double ex = X0[k + 1][0] - X0[k][0], ey = X0[k + 1][1] - X0[k][1];
+      const double L2 = ex * ex + ey * ey;
+      const double t
+          = L2 > 0 ? std::clamp(
+                ((X[0] - X0[k][0]) * ex + (X[1] - X0[k][1]) * ey) / L2, 0.0,
+                1.0)
+                   : 0.0;
+      const double dx = X0[k][0] + t * ex - X[0], dy = X0[k][1] + t * ey - X[1];
+      if (dx * dx + dy * dy < best)
+      {
+        best = dx * dx + dy * dy;
+        kb = k;
+        tb = t;
+      }
+    }
+    return std::array<double, 2>{(1 - tb) * v[kb][0] + tb * v[kb + 1][0],
+                                 (1 - tb) * v[kb][1] + tb * v[kb + 1][1]};
+  };
+  return w;
 }
 //-----------------------------------------------------------------------------
 void fsai::voice::VoiceSource::save(io::RankState& state) const

@@ -19,6 +19,7 @@
 #include <acoustics/SlitLaw.h>
 #include <acoustics/WaveSolver.h>
 #include <array>
+#include <functional>
 #include <glottis/FlowGlottis.h>
 #include <io/run_state.h>
 #include <memory>
@@ -28,6 +29,10 @@
 namespace fsai::common
 {
 class Parameters;
+}
+namespace fsai::glottis
+{
+class ElasticFold;
 }
 
 namespace fsai::voice
@@ -54,6 +59,23 @@ struct VoiceSourceParameters
   void validate() const;
 };
 
+/// The fold as the sound's sources see it (A2, A5): its moved surface,
+/// ordered along the channel (the slit's height), and its wall's velocity
+/// at a point X of the fold's rest surface
+struct FoldWall
+{
+  std::vector<std::array<double, 2>> surface;
+  std::function<std::array<double, 2>(const std::array<double, 2>& X)> velocity;
+};
+/// The 2-DOF fold's: its rigid motion, tapered by the profile's weight to
+/// the fixed walls beside the fold (as the flow's boundary)
+FoldWall fold_wall(const glottis::TwoDofFold& fold,
+                   const glottis::FoldProfile& profile);
+/// The elastic fold's (collective): its surface's own displacement and
+/// velocity, linear between the surface's points, at the nearest point of
+/// its rest surface
+FoldWall fold_wall(const glottis::ElasticFold& fold);
+
 class VoiceSource
 {
 public:
@@ -70,11 +92,11 @@ public:
 
   /// Start (or continue after a restart) from the fold's current state;
   /// `q_last` the last converged glottal flow [m³/s]
-  void start(const glottis::TwoDofFold& fold, double q_last);
+  void start(const FoldWall& fold, double q_last);
   /// The sound's source data for the step the flow just took (`s`) with
   /// the fold and, for the FE flow, its channel
-  void apply(const glottis::TwoDofFold& fold,
-             const glottis::FlowChannel* channel, const glottis::Sample& s);
+  void apply(const FoldWall& fold, const glottis::FlowChannel* channel,
+             const glottis::Sample& s);
 
   /// The source's last velocity in a checkpoint and back
   void save(io::RankState& state) const;
@@ -83,17 +105,16 @@ public:
 private:
   void set_slit_law(const std::vector<std::array<double, 2>>& surface,
                     const glottis::Sample& s);
-  void set_wall_acceleration(const glottis::TwoDofFold& fold,
+  void set_wall_acceleration(const FoldWall& fold,
                              const std::vector<std::array<double, 2>>& surface);
-  /// The fold wall's velocity at the fold dofs (2 per dof), tapered and
-  /// faded by open_fraction, for the fold's current state
+  /// The fold wall's velocity at the fold dofs (2 per dof), faded by
+  /// open_fraction, for the fold's current state
   std::vector<double>
-  wall_velocity(const glottis::TwoDofFold& fold,
+  wall_velocity(const FoldWall& fold,
                 const std::vector<std::array<double, 2>>& surface) const;
   /// The fold's surface for the slit law and the fade (empty without the
   /// slit law, which the fade then ignores)
-  std::vector<std::array<double, 2>>
-  slit_surface(const glottis::TwoDofFold& fold) const;
+  std::vector<std::array<double, 2>> slit_surface(const FoldWall& fold) const;
   double open_fraction(double x,
                        const std::vector<std::array<double, 2>>& surface) const;
 

@@ -245,7 +245,7 @@ fsai::voice::sound_measures(const std::vector<double>& p, double dt,
                              b[c] + (b[c + 1] - b[c]) * double(j) / double(nT))
                / double(N);
     std::vector<double> voiced;
-    while (voiced.size() < std::max(p.size(), 2 * n))
+    while (voiced.size() < std::max(p.size(), 2 * nT))
       voiced.insert(voiced.end(), cycle.begin(), cycle.end());
     res = ac::lpc_resonances(voiced, dt);
     out.formant_method = "periodic-part";

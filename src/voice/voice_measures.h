@@ -20,11 +20,11 @@
 //    and 2 f0 of the Hann-windowed whole cycles; SPL re 20 µPa; formants and
 //    bandwidths by closed-phase covariance LPC over the closed phases
 //    (Q within 2 % of the window's AC amplitude above Q_min, at least
-//    0.5 ms), shifted by the sound's delay from the glottis to the
-//    microphone, when the caller passes them (a sound without sources in
-//    the closed phase); otherwise, or if they hold too few samples, by
-//    autocorrelation LPC of the periodic part (sound.h), whose poles the
-//    harmonics bias.
+//    0.5 ms; sound.h, closed_phase_resonances), shifted by the sound's
+//    delay from the glottis to the microphone, when the caller passes them
+//    (a sound without sources in the closed phase); otherwise, or if they
+//    hold too few samples, by autocorrelation LPC of the periodic part
+//    (sound.h), whose poles the harmonics bias.
 // Each measure is the mean over the window's cycles.
 #pragma once
 #include <array>
