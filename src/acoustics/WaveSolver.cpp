@@ -332,9 +332,9 @@ void fsai::acoustics::WaveSolver::create_state(const Forms& f)
   // Piston load (A11): ρ0 v̇ = c_p ṗ + k_p p on its facets adds the lumped
   // boundary mass b = ∫ φ_i w ds times c_p to C and times k_p to K (and
   // to A, γΔt C + βΔt² K)
-  _piston_b = like();
   if (_piston)
   {
+    _piston_b = like();
     assemble_into(*f.b_piston, _piston_b.vec());
     VecScale(_piston_b.vec(), 1.0 / _rho0); // b_inlet's form is ρ0 ∫ φ w ds
     auto add_diagonal = [&](Mat A, double scale)

@@ -172,7 +172,6 @@ std::vector<fsai::acoustics::Resonance> fsai::acoustics::tube_resonances(
   return out;
 }
 //-----------------------------------------------------------------------------
-//-----------------------------------------------------------------------------
 fsai::acoustics::PistonLoad
 fsai::acoustics::flanged_piston(double area, double c0, double rho0)
 {
