@@ -9,7 +9,10 @@
 # written after the checkpoint replaced, not repeated). A 2-rank checkpoint
 # of the FE scene continues on 1 rank within 1e-6 of the serial run. The
 # Bernoulli case (a body-cover fold) also records the fold's surface
-# (fold_surface.csv, cut back to the checkpoint like series.csv).
+# (fold_surface.csv, cut back to the checkpoint like series.csv). The
+# remeshed case meshes the channel again after every step (E13a; a wider
+# rest gap keeps the glottis open enough for it): the restart meshes the
+# checkpoint's boundary again and continues on it.
 # usage: restart_glottis_elastic.sh FSAI_GLOTTIS MPIEXEC
 demo=$1
 mpiexec=${2:-mpirun}
@@ -19,6 +22,7 @@ source "$(dirname "$0")/common.sh"
 cases=(
   "bernoulli|500|250|--flow bernoulli --fold elastic --elastic.layers 2 --duration 0.01 --checkpoint-every 100 --write_every 30 --surface_every 10"
   "fe|80|50|--flow fe --fold elastic --duration 0.0016 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --coupling.method iqn-ils --checkpoint-every 20 --write_every 15"
+  "fe_remesh|10|7|--flow fe --fold elastic --duration 0.0002 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --glottis.rest_gap 0.3e-3 --fe.remesh_quality 0.99 --checkpoint-every 5 --write_every 3"
 )
 for case in "${cases[@]}"; do
   IFS='|' read -r name steps kill opts <<<"$case"

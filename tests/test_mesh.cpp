@@ -7,8 +7,12 @@
 #include <cmath>
 #include <common/errors.h>
 #include <dolfinx/common/IndexMap.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/utils.h>
 #include <filesystem>
+#include <fsai_forms/ale.h>
+#include <mesh/TriangleField.h>
 #include <mesh/builders.h>
 #include <mesh/gmsh_model.h>
 #include <mesh/xdmf_mesh.h>
@@ -153,4 +157,78 @@ TEST_CASE(".geo file and XDMF round trip keep tags and names", "[mesh][mpi]")
   CHECK_THROWS_AS(
       fsai::mesh::from_geo_file(MPI_COMM_WORLD, "/nonexistent.geo", 2),
       fsai::InputError);
+}
+
+TEST_CASE("Remeshing transfer: P1 fields onto another triangulation",
+          "[mesh][mpi]")
+{
+  // Two unrelated triangulations of the unit square (the flow's meshes
+  // before and after a remeshing, docs/model.md E13a)
+  MPI_Comm comm = MPI_COMM_WORLD;
+  auto a = fsai::mesh::rectangle(comm, {0, 0}, {1, 1}, 0.05);
+  auto b = fsai::mesh::rectangle(comm, {0, 0}, {1, 1}, 0.037);
+  auto space = [](std::shared_ptr<dolfinx::mesh::Mesh> m)
+  {
+    return std::make_shared<dolfinx::fem::FunctionSpace>(
+        dolfinx::fem::create_functionspace(
+            fsai::forms::ale::functionspace_a(2, 1), "d", m));
+  };
+  const double pi = std::acos(-1.0);
+  // A linear field (reproduced exactly) and the divergence-free field of
+  // the stream function sin(πx) sin(πy)
+  auto linear = [](double x, double y) {
+    return std::array<double, 2>{1 + 2 * x - 3 * y, 0.5 * x + y};
+  };
+  auto vortex = [&](double x, double y)
+  {
+    return std::array<double, 2>{pi * std::sin(pi * x) * std::cos(pi * y),
+                                 -pi * std::cos(pi * x) * std::sin(pi * y)};
+  };
+  auto sample = [](const dolfinx::fem::FunctionSpace& V, auto f)
+  {
+    const auto X = V.tabulate_dof_coordinates(false);
+    std::vector<double> out;
+    for (std::size_t i = 0; i < X.size() / 3; ++i)
+    {
+      const auto v = f(X[3 * i], X[3 * i + 1]);
+      out.insert(out.end(), {v[0], v[1]});
+    }
+    return out;
+  };
+  const auto Va = space(a.mesh), Vb = space(b.mesh);
+  const auto la = sample(*Va, linear), va = sample(*Va, vortex);
+  const auto from_a = fsai::mesh::TriangleField::gather(comm, *Va, {la, va});
+  REQUIRE(from_a.components() == 4);
+  // Onto b's nodes
+  const auto Xb = Vb->tabulate_dof_coordinates(false);
+  std::vector<double> vb;
+  double err_linear = 0;
+  for (std::size_t i = 0; i < Xb.size() / 3; ++i)
+  {
+    const auto f = from_a({Xb[3 * i], Xb[3 * i + 1]});
+    const auto l = linear(Xb[3 * i], Xb[3 * i + 1]);
+    err_linear
+        = std::max({err_linear, std::abs(f[0] - l[0]), std::abs(f[1] - l[1])});
+    vb.insert(vb.end(), {f[2], f[3]});
+  }
+  CHECK(err_linear < 1e-12);
+  // The transferred vortex carries the same flux through the section
+  // y = 1/2, 0 ≤ x ≤ 1/2 (exactly −1) as the field it came from
+  const auto from_b = fsai::mesh::TriangleField::gather(comm, *Vb, {vb});
+  auto flux = [](const fsai::mesh::TriangleField& f, int c)
+  {
+    const int n = 4000;
+    double q = 0;
+    for (int k = 0; k < n; ++k)
+      q += f({(k + 0.5) * 0.5 / n, 0.5})[c] * 0.5 / n;
+    return q;
+  };
+  const double qa = flux(from_a, 3), qb = flux(from_b, 1);
+  CHECK(std::abs(qa + 1) < 5e-3);
+  CHECK(std::abs(qb - qa) < 2e-3);
+  // A point just outside (a curved wall meshed twice) takes the value at
+  // the nearest point of the triangulation
+  CHECK(from_a.distance({1 + 1e-4, 0.3}) == Approx(1e-4).epsilon(1e-6));
+  const auto edge = from_a({1 + 1e-4, 0.3}), at = from_a({1, 0.3});
+  CHECK(edge[0] == Approx(at[0]).margin(1e-12));
 }

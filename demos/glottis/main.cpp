@@ -71,17 +71,21 @@ int main(int argc, char* argv[])
           return;
         }
         std::unique_ptr<io::TimeSeriesWriter> flow_xdmf, fold_xdmf;
-        auto writer = [&](const char* name, auto fields)
+        auto writer = [&](const std::string& name, auto fields)
         {
           return sp.write_every > 0 and !fields.empty()
                      ? std::make_unique<io::TimeSeriesWriter>(
                          sp.output + "/" + name, fields, loop.restart_time())
                      : nullptr;
         };
-        flow_xdmf = writer("flow.xdmf", model->flow_fields());
-        fold_xdmf = writer("fold.xdmf", model->fold_fields());
         if (loop.restarting())
           model->restore(loop.checkpoint(), loop.fields());
+        // A remeshed flow (--fe.remesh_quality) continues in a new file,
+        // opened at its first write
+        int meshes = model->remeshes();
+        const bool flow_out
+            = sp.write_every > 0 and !model->flow_fields().empty();
+        fold_xdmf = writer("fold.xdmf", model->fold_fields());
         std::unique_ptr<fsai::glottis::FoldSurfaceRecord> surface;
         if (sp.surface_every > 0)
           surface = std::make_unique<fsai::glottis::FoldSurfaceRecord>(
@@ -115,8 +119,18 @@ int main(int argc, char* argv[])
         hooks.step = [&](long k)
         {
           s = model->step();
-          if (flow_xdmf and k % sp.write_every == 0)
+          if (flow_out and k % sp.write_every == 0)
+          {
+            if (!flow_xdmf or model->remeshes() != meshes)
+            {
+              meshes = model->remeshes();
+              flow_xdmf = writer(
+                  meshes == 0 ? std::string("flow.xdmf")
+                              : fmt::format("flow_remeshed{}.xdmf", meshes),
+                  model->flow_fields());
+            }
             flow_xdmf->write(s.t);
+          }
           if (fold_xdmf and k % sp.write_every == 0)
             fold_xdmf->write(s.t);
           if (surface)
@@ -145,6 +159,7 @@ int main(int argc, char* argv[])
         // 4. Limit-cycle statistics, summary and chart
         fsai::glottis::report_limit_cycle(scene, t, g, Q, max_pen, wall,
                                           summary);
+        model->report(summary);
         summary.set("coupling_iterations_mean", double(its) / double(n));
         summary.set("coupling_iterations_max", its_max);
         summary.set("coupling_unconverged_steps", loop.unconverged_steps());

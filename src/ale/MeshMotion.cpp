@@ -423,6 +423,19 @@ void fsai::ale::MeshMotion::load(const std::vector<io::RankState>& ranks,
   place_mesh(); // as after the last accepted move
 }
 //-----------------------------------------------------------------------------
+void fsai::ale::MeshMotion::continue_from(std::span<const double> d_nn)
+{
+  if (d_nn.size() != _d_nn.size())
+    throw std::invalid_argument("ALE: continue_from with a wrong array size");
+  std::fill(_d_n.begin(), _d_n.end(), 0.0);
+  _d_nn.assign(d_nn.begin(), d_nn.end());
+  auto d = _d->x()->mutable_array();
+  std::fill(d.begin(), d.end(), 0.0);
+  std::fill(_J.begin(), _J.end(), 1.0);
+  _history = 2;
+  place_mesh();
+}
+//-----------------------------------------------------------------------------
 void fsai::ale::MeshMotion::rewind()
 {
   std::copy(_d_n.begin(), _d_n.end(), _d->x()->mutable_array().begin());

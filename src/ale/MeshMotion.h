@@ -138,6 +138,17 @@ public:
   /// Back to the last accepted d and its mesh (after a failed step)
   void rewind();
 
+  /// The current mesh is the reference of a motion already under way
+  /// (remeshing): d^n = 0 and d^{n−1} = x^{n−1} − x^n, the previous
+  /// positions of the nodes relative to the current ones (local entries,
+  /// ghosts included), so that the next velocity() is BDF2 as before
+  void continue_from(std::span<const double> d_nn);
+  /// The accepted d^n and d^{n−1} (local entries, ghosts included)
+  std::array<std::span<const double>, 2> history() const
+  {
+    return {std::span<const double>(_d_n), std::span<const double>(_d_nn)};
+  }
+
   /// The accepted motion (d, its history, the relaxed Jacobians) into a
   /// checkpoint (by mesh node and cell, io/field_state.h) and back from all
   /// the checkpoint's ranks; load() also moves the mesh to X + d

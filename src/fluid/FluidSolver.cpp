@@ -681,15 +681,42 @@ void fsai::fluid::FluidSolver::load(const std::vector<io::RankState>& ranks,
        {std::pair{"v", _v}, {"v_n", _v_n}, {"v_nn", _v_nn}})
     io::get_blocks(ranks, prefix + name, f->x()->mutable_array(), bs, kv);
   io::get_blocks(ranks, prefix + "p", _p->x()->mutable_array(), 1, kp);
+  merge();
+  const auto& ts = io::state_entry(ranks.at(0), prefix + "t_steps", 2);
+  _t = ts[0];
+  _steps = int(ts[1]);
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::merge()
+{
   auto up = _up->x()->mutable_array();
   auto v = _v->x()->array(), p = _p->x()->array();
   for (std::size_t i = 0; i < _map_v.size(); ++i)
     up[_map_v[i]] = v[i];
   for (std::size_t i = 0; i < _map_p.size(); ++i)
     up[_map_p[i]] = p[i];
-  const auto& ts = io::state_entry(ranks.at(0), prefix + "t_steps", 2);
-  _t = ts[0];
-  _steps = int(ts[1]);
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::set_state(std::span<const double> v_n,
+                                         std::span<const double> v_nn,
+                                         std::span<const double> p, double t,
+                                         int steps)
+{
+  auto put = [](std::span<const double> a, auto& f)
+  {
+    auto x = f->x()->mutable_array();
+    if (a.size() != x.size())
+      throw std::invalid_argument("fluid: set_state with a wrong array size");
+    std::copy(a.begin(), a.end(), x.begin());
+  };
+  put(v_n, _v);
+  put(v_n, _v_n);
+  put(v_nn, _v_nn);
+  put(p, _p);
+  merge();
+  _t = t;
+  _steps = steps;
+  save_state();
 }
 //-----------------------------------------------------------------------------
 double fsai::fluid::FluidSolver::flow_rate(std::span<const std::int32_t> facets)

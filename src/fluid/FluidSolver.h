@@ -164,6 +164,18 @@ public:
   /// node, io/field_state.h) and back from all the checkpoint's ranks
   void save(io::RankState& state, const std::string& prefix) const;
   void load(const std::vector<io::RankState>& ranks, const std::string& prefix);
+  /// The accepted step's state from elsewhere (a flow transferred from
+  /// another mesh): v^n (also the current velocity), v^{n−1}, p^n (local
+  /// arrays of the velocity and pressure spaces, ghosts included), the time
+  /// and the steps taken (≥ 1: the next step is BDF2); saved as the start
+  /// of the next step
+  void set_state(std::span<const double> v_n, std::span<const double> v_nn,
+                 std::span<const double> p, double t, int steps);
+  /// v^{n−1} of the BDF history
+  std::shared_ptr<const dolfinx::fem::Function<double>> velocity_nn() const
+  {
+    return _v_nn;
+  }
   /// Flow rate ∫ v·n ds over `facets` (outward n)
   double flow_rate(std::span<const std::int32_t> facets);
 
@@ -183,6 +195,8 @@ public:
   double time() const { return _t; }
   void set_time(double t) { _t = t; }
   double dt() const { return _dt; }
+  /// Steps taken (0: the next is a BDF1 start)
+  int steps() const { return _steps; }
   std::int64_t dofs() const;
   /// ||∇p||_L2: a measure of spurious pressure oscillations
   double pressure_gradient_norm();
@@ -204,6 +218,7 @@ private:
   bool _configure_blocks = false;
   mutable int _solves_since_setup = 0; // solves with this preconditioner
   void split();
+  void merge(); // the mixed vector up from v and p (local entries)
   struct State
   {
     std::vector<double> up, v, p, v_n, v_nn;

@@ -6,7 +6,8 @@
 // instead of a rigid one:
 //   - the fluid boundary is the fold surface, lifted as a whole (tapered
 //     to the wall) by boundary_lift(g, g_min) when the fold's half-gap g
-//     comes below 2 g_min, so the fluid mesh never collapses;
+//     comes below 2 g_min, so the fluid mesh never collapses (or, with
+//     --closure.lift local, around the points below 2 g_min only);
 //   - Ω^P_t: the cells whose current midpoint lies inside the deformed
 //     fold (its moved surface polyline closed along the wall) are porous;
 //   - contact with the axis is the fold's own penalty contact (inside its
@@ -36,6 +37,15 @@
 // fold's step under the surface pressure extrapolated linearly from the
 // last two steps, error O(Δt² p''); "displacement": the Newmark predictor
 // u + Δt v + ½Δt² a.
+//
+// Remeshing (--fe.remesh_quality q > 0, docs/model.md E13a): when
+// an accepted step leaves a cell below the scaled Jacobian q, or a move
+// inverts one (the step is then repeated once on the new mesh), the
+// channel is meshed again with the fold surface where the fluid boundary
+// is, and the flow state is transferred (FlowChannel::transfer_from). The
+// new fluid boundary nodes take the arc length of their nearest point on
+// the old boundary, and from then on move by the fold's displacement
+// since the remeshing (u − u_r, and the lift's change).
 #pragma once
 #include "ElasticFold.h"
 #include "FlowChannel.h"
@@ -84,8 +94,10 @@ public:
   /// −p n) of the last evaluation [Pa]
   const std::vector<double>& surface_load() const { return _p; }
   /// The flow side: mesh, flow, mesh motion, output fields
-  const FlowChannel& channel() const { return _channel; }
-  const FlowChannel* flow_channel() const override { return &_channel; }
+  const FlowChannel& channel() const { return *_channel; }
+  const FlowChannel* flow_channel() const override { return _channel.get(); }
+  int remeshes() const override { return _remesh.count; }
+  void report(io::RunSummary& summary) const override;
   /// After a failed step: flow and mesh back at the last accepted step,
   /// whose fields (flow, porous indicator, mesh displacement) are written to
   /// the XDMF file `path`
@@ -97,18 +109,42 @@ private:
   void move_boundary(double t, const std::vector<std::array<double, 2>>& x);
   /// The fluid pressure at the fold's ordered surface points
   std::vector<double> surface_pressure();
-  /// Arc length of a reference point of the fold curve (cached: the same
-  /// fluid nodes are asked at every move)
+  /// Arc length of a reference point of the fluid's fold boundary (cached:
+  /// the same fluid nodes are asked at every move)
   double arc_length(const std::array<double, 2>& X);
+  /// The channel meshed again around the fold as it is, with the accepted
+  /// flow state (after an accepted step)
+  void remesh();
+  /// The channel of the remeshed boundary `_remesh.curve` (no state)
+  std::unique_ptr<FlowChannel> make_channel() const;
 
   MPI_Comm _comm;
   const FoldProfile& _profile;
   FlowGlottisParameters _par;
   ElasticFold _fold;
-  FlowChannel _channel;
+  fluid::FluidParameters _fp;
+  ale::MeshMotionParameters _ap;
+  std::unique_ptr<FlowChannel> _channel;
   bool _explicit;
+  /// The fluid boundary of the last remeshing: its points as meshed (by
+  /// arc length s), the fold's surface displacement and lift then
+  struct Remeshing
+  {
+    int count = 0;
+    std::vector<std::array<double, 2>> curve;
+    std::vector<double> s;
+    std::vector<std::array<double, 2>> u;
+    double lift = 0;
+  } _remesh;
+  double _quality = 1;     ///< min scaled Jacobian of the last move
+  double _min_quality = 1; ///< over the accepted steps
   coupling::FixedPointCoupling _loop;
   std::vector<double> _s; ///< arc length of the fold's ordered points
+  std::vector<double> _w; ///< their taper weights
+  /// The lift of the fluid boundary above each fold point, --closure.lift
+  /// local
+  std::vector<double>
+  local_lifts(const std::vector<std::array<double, 2>>& x) const;
   std::map<std::array<double, 2>, double> _arc_cache;
   /// Gathered fluid pressure nodes: their order by arc length and arc
   /// lengths (set at the first call)
@@ -119,6 +155,10 @@ private:
   std::vector<double> _p, _p_n, _p_nn;
   /// The first guess of the step's surface displacement
   std::vector<double> predict();
+  /// One coupled time step on the current mesh
+  Sample attempt();
+  /// The moved fold surface of the last move and of the accepted step
+  std::vector<std::array<double, 2>> _x_moved, _x_accepted;
   int _steps = 0;
   double _t = 0;
 };

@@ -42,6 +42,9 @@ void fsai::glottis::ElasticFoldParameters::bind(fsai::common::Parameters& p)
         "damping) [Hz]");
   p.add("elastic.f_zeta_high", f_zeta_high,
         "--fold elastic: upper frequency of zeta [Hz]");
+  p.add("elastic.newmark_gamma", newmark_gamma,
+        "--fold elastic: Newmark gamma (beta = (gamma + 1/2)^2 / 4; > 1/2 "
+        "damps step-to-step ringing)");
   p.add_choice("elastic.contact", contact, {"penalty", "hertz"},
                "--fold elastic: contact with the axis, penalty "
                "(--elastic.contact_factor) or hertz (F_H = k_H delta^1.5 (1 + "
@@ -76,6 +79,7 @@ void fsai::glottis::ElasticFoldParameters::validate() const
   fsai::require(f_zeta_low >= 0 and f_zeta_low < f_zeta_high,
                 "--elastic.f_zeta_low", "in [0, f_zeta_high)", f_zeta_low);
   fsai::require_positive("--elastic.contact_factor", contact_factor);
+  fsai::require_range("--elastic.newmark_gamma", newmark_gamma, 0.5, 1.0);
   fsai::require(contact == "penalty" or contact == "hertz", "--elastic.contact",
                 "penalty or hertz", contact);
   fsai::require(coupling == "auto" or coupling == "explicit"
@@ -111,6 +115,8 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   sp.degree = p.degree;
   sp.material = p.material;
   sp.clamped_length = p.clamped_ends ? profile.geometry().depth : 0.0;
+  sp.newmark_gamma = p.newmark_gamma;
+  sp.newmark_beta = 0.25 * (p.newmark_gamma + 0.5) * (p.newmark_gamma + 0.5);
   const double wl = 2 * M_PI * p.f_zeta_low, wh = 2 * M_PI * p.f_zeta_high;
   sp.rayleigh_mass = 2 * p.zeta * wl * wh / (wl + wh);
   sp.rayleigh_stiffness = 2 * p.zeta / (wl + wh);

@@ -56,6 +56,12 @@ struct ElasticFoldParameters
   double zeta = 0.01;
   double f_zeta_low = 0;    ///< [Hz]
   double f_zeta_high = 100; ///< [Hz]
+  /// Newmark's γ of the fold's step, β = (γ + 1/2)²/4: 1/2 is the
+  /// average-acceleration rule (no numerical damping), γ > 1/2 damps the
+  /// step-to-step ringing of stiff, heavily damped surface motion (in a
+  /// nearly closed glottis the squeezed air film), for which the
+  /// trapezoidal rule's amplification tends to −1 (E18)
+  double newmark_gamma = 0.5;
   /// Contact with the axis: "penalty" (k_c below) or "hertz" (G5 for the
   /// elastic fold: ElasticFold::hertz())
   std::string contact = "penalty";

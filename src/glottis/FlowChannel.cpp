@@ -8,6 +8,7 @@
 #include <common/mpi_gather.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/utils.h>
+#include <mesh/TriangleField.h>
 #include <mesh/glottis_channel.h>
 
 namespace
@@ -39,11 +40,10 @@ double fsai::glottis::boundary_lift(double g, double g_min)
   return g_min + b * std::exp((g - g_min - b) / b) - g;
 }
 //-----------------------------------------------------------------------------
-fsai::glottis::FlowChannel::FlowChannel(MPI_Comm comm,
-                                        const FoldProfile& profile,
-                                        const FlowGlottisParameters& p,
-                                        fluid::FluidParameters fp,
-                                        const ale::MeshMotionParameters& ap)
+fsai::glottis::FlowChannel::FlowChannel(
+    MPI_Comm comm, const FoldProfile& profile, const FlowGlottisParameters& p,
+    fluid::FluidParameters fp, const ale::MeshMotionParameters& ap,
+    const std::vector<std::array<double, 2>>& curve)
     : _comm(comm), _profile(profile), _dt(p.dt), _porous_ramp(p.porous_ramp),
       _chi_floor(fp.sigma_p > 0
                      ? std::min(1.0, 0.01 * fp.rho / (fp.sigma_p * p.dt))
@@ -53,7 +53,8 @@ fsai::glottis::FlowChannel::FlowChannel(MPI_Comm comm,
   const auto& g = profile.geometry();
   fsai::require(p.g_min < g.rest_gap, "--closure.g_min", "< the rest gap",
                 p.g_min);
-  _mesh = mesh::glottis_channel(comm, profile, p.sizes);
+  _mesh = curve.empty() ? mesh::glottis_channel(comm, profile, p.sizes)
+                        : mesh::glottis_channel(comm, profile, p.sizes, curve);
   auto find = [&](const char* name)
   { return _mesh.facet_tags->find(_mesh.facet_tag(name)); };
   _fold_facets = find("fold");
@@ -307,6 +308,73 @@ fsai::glottis::FlowChannel::fold_boundary() const
       out.push_back({_fold_X[i][0] + d[2 * k], _fold_X[i][1] + d[2 * k + 1]});
   }
   return out;
+}
+//-----------------------------------------------------------------------------
+std::vector<std::array<std::array<double, 2>, 2>>
+fsai::glottis::FlowChannel::fold_nodes() const
+{
+  const auto x = fold_boundary();
+  std::vector<std::array<std::array<double, 2>, 2>> out;
+  const std::int32_t owned
+      = _flow->velocity_space()->dofmap()->index_map->size_local();
+  for (std::size_t i = 0, k = 0; i < _fold_dofs.size(); ++i)
+    if (_fold_dofs[i] < owned)
+      out.push_back({_fold_X[i], x[k++]});
+  return out;
+}
+//-----------------------------------------------------------------------------
+std::array<double, 4>
+fsai::glottis::FlowChannel::transfer_from(FlowChannel& old)
+{
+  const auto before = old.flow_rates();
+  // Velocity, its history and the nodes' previous positions relative to
+  // the current ones, x^{n−1} − x^n = d^{n−1} − d^n, on the old mesh as it
+  // stands (all ranks' cells on every rank)
+  const auto& of = old.flow();
+  const auto [d_n, d_nn] = old.motion().history();
+  std::vector<double> back(d_n.size());
+  for (std::size_t i = 0; i < back.size(); ++i)
+    back[i] = d_nn[i] - d_n[i];
+  const auto fv = mesh::TriangleField::gather(_comm, *of.velocity_space(),
+                                              {of.velocity()->x()->array(),
+                                               of.velocity_nn()->x()->array(),
+                                               std::span<const double>(back)});
+  const auto fp = mesh::TriangleField::gather(
+      _comm, *of.pressure()->function_space(), {of.pressure()->x()->array()});
+  // At this mesh's nodes (it is at its reference, the moved fold)
+  const std::vector<double> XV
+      = _flow->velocity_space()->tabulate_dof_coordinates(false);
+  const std::size_t nv = XV.size() / 3;
+  std::vector<double> v(2 * nv), vnn(2 * nv), dnn(2 * nv);
+  for (std::size_t i = 0; i < nv; ++i)
+  {
+    const auto a = fv({XV[3 * i], XV[3 * i + 1]});
+    for (int k = 0; k < 2; ++k)
+      v[2 * i + k] = a[k], vnn[2 * i + k] = a[2 + k], dnn[2 * i + k] = a[4 + k];
+  }
+  const std::vector<double> XQ
+      = _flow->pressure()->function_space()->tabulate_dof_coordinates(false);
+  std::vector<double> p(XQ.size() / 3);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p[i] = fp({XQ[3 * i], XQ[3 * i + 1]})[0];
+  _flow->set_state(v, vnn, p, of.time(), std::max(of.steps(), 1));
+  _motion->continue_from(dnn);
+  // The mesh velocity and the fold wall's velocity of the accepted step
+  // (the flow rates through moving fold walls use them)
+  auto w = _flow->mesh_velocity().x()->mutable_array();
+  const auto w_old = mesh::TriangleField::gather(
+      _comm, *of.velocity_space(), {old._flow->mesh_velocity().x()->array()});
+  for (std::size_t i = 0; i < nv; ++i)
+  {
+    const auto a = w_old({XV[3 * i], XV[3 * i + 1]});
+    w[2 * i] = a[0], w[2 * i + 1] = a[1];
+  }
+  auto gw = _flow->wall_velocity().x()->mutable_array();
+  for (auto d : _fold_dofs)
+    for (int k = 0; k < 2; ++k)
+      gw[2 * d + k] = w[2 * d + k];
+  const auto after = flow_rates();
+  return {before[1], after[1], before[0], after[0]};
 }
 //-----------------------------------------------------------------------------
 std::array<double, 2> fsai::glottis::FlowChannel::flow_rates()

@@ -47,9 +47,25 @@ public:
   using ToOutline
       = std::function<std::array<double, 2>(const std::array<double, 2>&)>;
 
+  /// `curve`: empty for the channel around the profile at rest, else the
+  /// fold surface's points (inferior to superior, without the attachments)
+  /// of a channel meshed again around a moved fold, whose reference
+  /// configuration is then that moved one (docs/model.md E13a)
   FlowChannel(MPI_Comm comm, const FoldProfile& profile,
               const FlowGlottisParameters& p, fluid::FluidParameters fp,
-              const ale::MeshMotionParameters& ap);
+              const ale::MeshMotionParameters& ap,
+              const std::vector<std::array<double, 2>>& curve = {});
+
+  /// The accepted state of `old` (another mesh of the same channel, its
+  /// mesh where the flow left it) onto this channel's reference mesh: the
+  /// velocity, its BDF history and the pressure interpolated linearly at
+  /// this mesh's nodes, the nodes' previous positions (for the BDF2 mesh
+  /// velocity) likewise; the time and step count carried over. Returns
+  /// the glottal and inlet flow rates before and after (the transfer's
+  /// mass balance; collective)
+  std::array<double, 4> transfer_from(FlowChannel& old);
+  /// Reference and current positions of this rank's owned fold nodes
+  std::vector<std::array<std::array<double, 2>, 2>> fold_nodes() const;
 
   /// Interface values of the mesh motion (fold nodes and gap columns) for
   /// the fluid boundary displacement u(X) of the fold's reference points

@@ -51,6 +51,12 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
   p.add("closure.gap_columns", gap_columns,
         "algebraic gap motion: the columns under the fold boundary up to "
         "g0 + this times the edge radius from the axis");
+  p.add("fe.remesh_quality", remesh_quality,
+        "elastic fold: mesh the channel again when a cell's scaled Jacobian "
+        "falls below this (0: never)");
+  p.add_choice("closure.lift", lift, {"uniform", "local"},
+               "elastic fold: the fluid boundary lifted above g_min as a whole "
+               "(uniform) or around the points below 2 g_min (local)");
   p.add("fe.superpose_motion", superpose_motion,
         "move the mesh by superposing three precomputed extensions of the "
         "fold motion (exact for the linear extension) instead of solving "
@@ -75,6 +81,8 @@ void fsai::glottis::FlowGlottisParameters::validate() const
   fsai::require_positive("--closure.g_min", g_min);
   fsai::require(porous_ramp >= 0, "--closure.porous_ramp", ">= 0", porous_ramp);
   fsai::require(gap_columns >= 0, "--closure.gap_columns", ">= 0", gap_columns);
+  fsai::require(remesh_quality >= 0 and remesh_quality < 1,
+                "--fe.remesh_quality", "in [0, 1)", remesh_quality);
 }
 
 fsai::glottis::FlowGlottisSetup::FlowGlottisSetup()

@@ -87,6 +87,19 @@ struct FlowGlottisParameters
   /// of their three extensions, computed once (no solve per move). Off:
   /// solve the extension at every move (the same mesh to round-off)
   bool superpose_motion = true;
+  /// Elastic fold: after a step whose mesh has a cell below this scaled
+  /// Jacobian while the half-gap exceeds 2 h_gap (or when a move inverts a
+  /// cell), the channel is meshed again on the fold surface as it is and
+  /// the flow state moved onto the new mesh (docs/model.md E13a); 0: never
+  double remesh_quality = 0.0;
+  /// Elastic fold: how the fluid boundary is kept above g_min (G3).
+  /// "uniform": the whole surface lifted by boundary_lift of its lowest
+  /// point (tapered to the wall); "local": each surface point's own
+  /// boundary_lift spread along the surface by a Gaussian of width R/2
+  /// (the largest of the points' spread lifts), so that in the closed
+  /// phase the contact point's motion does not move the whole fluid
+  /// boundary
+  std::string lift = "uniform";
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };

@@ -153,7 +153,7 @@ void fsai::glottis::ElasticFlowGlottis::restore(
 std::vector<fsai::io::TimeSeriesWriter::Field>
 fsai::glottis::ElasticFlowGlottis::flow_fields() const
 {
-  return _channel.fields();
+  return _channel->fields();
 }
 //-----------------------------------------------------------------------------
 std::vector<fsai::io::TimeSeriesWriter::Field>
@@ -164,6 +164,6 @@ fsai::glottis::ElasticFlowGlottis::fold_fields()
 //-----------------------------------------------------------------------------
 void fsai::glottis::ElasticFlowGlottis::describe(io::RunSummary& summary)
 {
-  summary.set("flow_dofs", _channel.describe());
+  summary.set("flow_dofs", _channel->describe());
   describe_elastic(_fold, summary);
 }

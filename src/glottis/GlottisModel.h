@@ -64,6 +64,11 @@ public:
   virtual const TwoDofFold* two_dof_fold() const { return nullptr; }
   /// The FE flow's channel (nullptr for the Bernoulli flow)
   virtual const FlowChannel* flow_channel() const { return nullptr; }
+  /// How often the flow mesh was built anew (remeshing): a new count starts
+  /// a new flow output file
+  virtual int remeshes() const { return 0; }
+  /// Figures of the whole run, after the time loop, into the summary
+  virtual void report(io::RunSummary& summary) const { (void)summary; }
   /// Log the fold (mass, stiffness or dofs, in-vacuo modes) and the flow
   /// (unknowns), and put them in the summary
   virtual void describe(io::RunSummary& summary) = 0;

@@ -158,6 +158,12 @@ std::unique_ptr<fsai::glottis::GlottisModel> fsai::glottis::make_glottis(
   }
   if (fe)
   {
+    fsai::require(setup.fe.remesh_quality == 0, "--fe.remesh_quality",
+                  "0 with the 2-DOF fold (remeshing is for --fold elastic)",
+                  setup.fe.remesh_quality);
+    fsai::require(setup.fe.lift == "uniform", "--closure.lift",
+                  "uniform with the 2-DOF fold (local is for --fold elastic)",
+                  setup.fe.lift);
     return std::make_unique<FlowGlottis>(
         comm, profile, setup.fold, setup.contact, setup.fe, setup.fluid,
         setup.ale, setup.coupling, log, rows_kept);

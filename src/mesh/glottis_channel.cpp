@@ -25,7 +25,8 @@ namespace
 /// the shared fold curve and its lateral attachment at y = H) in the
 /// current gmsh model, meshed
 void build_channel(const fsai::glottis::FoldProfile& profile,
-                   const fsai::mesh::ChannelSizes& h, bool with_fold)
+                   const fsai::mesh::ChannelSizes& h, bool with_fold,
+                   const std::vector<std::array<double, 2>>& curve = {})
 {
   using namespace fsai::mesh;
   namespace geo = gmsh::model::geo;
@@ -38,7 +39,16 @@ void build_channel(const fsai::glottis::FoldProfile& profile,
   const int p_out1 = geo::addPoint(x1, H, 0);
   // The fold surface, superior attachment to inferior (the domain
   // boundary runs counter-clockwise)
-  const std::vector<int> spline = add_fold_points(profile);
+  std::vector<int> spline;
+  if (curve.empty())
+    spline = add_fold_points(profile);
+  else
+  {
+    spline.push_back(geo::addPoint(g.fold_length, H, 0));
+    for (auto it = curve.rbegin(); it != curve.rend(); ++it)
+      spline.push_back(geo::addPoint((*it)[0], (*it)[1], 0));
+    spline.push_back(geo::addPoint(0, H, 0));
+  }
   const int p_sup = spline.front(), p_inf = spline.back();
   const int p_in1 = geo::addPoint(x0, H, 0);
   const int axis = geo::addLine(p_in0, p_out0);
@@ -115,6 +125,18 @@ fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
   check_sizes(profile, sizes);
   return build_with_gmsh(comm, 2,
                          [&]() { build_channel(profile, sizes, false); });
+}
+
+fsai::mesh::MeshData
+fsai::mesh::glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
+                            const ChannelSizes& sizes,
+                            const std::vector<std::array<double, 2>>& curve)
+{
+  check_sizes(profile, sizes);
+  fsai::require(curve.size() >= 2, "remeshed fold curve", ">= 2 points",
+                double(curve.size()));
+  return build_with_gmsh(
+      comm, 2, [&]() { build_channel(profile, sizes, false, curve); });
 }
 
 fsai::mesh::FluidSolidMeshes

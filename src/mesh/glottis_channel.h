@@ -2,6 +2,7 @@
 #pragma once
 #include "MeshData.h"
 #include "benchmarks.h"
+#include <array>
 #include <mpi.h>
 #include <vector>
 
@@ -43,6 +44,14 @@ struct ChannelSizes
 /// ChannelSizes for the finer and coarser regions.
 MeshData glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
                          const ChannelSizes& sizes);
+
+/// The same channel with the fold surface a spline through `curve`, the
+/// moved fold's surface points from the inferior to the superior
+/// attachment (without them; they stay at (0, H) and (T, H)): the mesh of a
+/// remeshed fold (docs/model.md E13a)
+MeshData glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
+                         const ChannelSizes& sizes,
+                         const std::vector<std::array<double, 2>>& curve);
 
 /// Points (in the current gmsh geo model) of the fold curve, superior to
 /// inferior: its superior attachment (T, H) first, every 2nd profile point,
