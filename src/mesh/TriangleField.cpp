@@ -38,8 +38,10 @@ fsai::mesh::TriangleField::TriangleField(std::vector<double> xy,
       c = std::min(c, _xy[6 * t + 2 * k + 1]);
       d = std::max(d, _xy[6 * t + 2 * k + 1]);
     }
-    auto ix = [&](double x) { return std::clamp(int((x - _x0) / _hx), 0, _nx - 1); };
-    auto iy = [&](double y) { return std::clamp(int((y - _y0) / _hy), 0, _ny - 1); };
+    auto ix = [&](double x)
+    { return std::clamp(int((x - _x0) / _hx), 0, _nx - 1); };
+    auto iy = [&](double y)
+    { return std::clamp(int((y - _y0) / _hy), 0, _ny - 1); };
     return std::array<int, 4>{ix(a), ix(b), iy(c), iy(d)};
   };
   std::vector<std::int32_t> count(std::size_t(_nx) * _ny + 1, 0);
@@ -149,8 +151,8 @@ fsai::mesh::TriangleField::locate(const std::array<double, 2>& x) const
     for (int j = j0 - r; j <= j0 + r; ++j)
       for (int i = i0 - r; i <= i0 + r; ++i)
       {
-        if (std::max(std::abs(i - i0), std::abs(j - j0)) != r or i < 0
-            or j < 0 or i >= _nx or j >= _ny)
+        if (std::max(std::abs(i - i0), std::abs(j - j0)) != r or i < 0 or j < 0
+            or i >= _nx or j >= _ny)
           continue;
         const std::size_t b = std::size_t(j) * _nx + i;
         for (auto k = _offsets[b]; k < _offsets[b + 1]; ++k)
