@@ -69,21 +69,9 @@ fsai::glottis::ElasticFlowGlottis::arc_length(const std::array<double, 2>& X)
     return it->second = _profile.arc_length(X);
   // Remeshed: the arc length of the nearest point of the boundary as it was
   // meshed (linear between its points)
-  const auto& c = _remesh.curve;
-  double best = 1e300, s = _remesh.s.front();
-  for (std::size_t k = 0; k + 1 < c.size(); ++k)
-  {
-    const double ax = c[k + 1][0] - c[k][0], ay = c[k + 1][1] - c[k][1];
-    const double l2 = ax * ax + ay * ay;
-    const double f
-        = l2 > 0 ? std::clamp(
-              ((X[0] - c[k][0]) * ax + (X[1] - c[k][1]) * ay) / l2, 0.0, 1.0)
-                 : 0.0;
-    const double d
-        = std::hypot(X[0] - c[k][0] - f * ax, X[1] - c[k][1] - f * ay);
-    if (d < best)
-      best = d, s = _remesh.s[k] + f * (_remesh.s[k + 1] - _remesh.s[k]);
-  }
+  const auto n = nearest_on_polyline(_remesh.curve, X);
+  const double best = std::sqrt(n.d2);
+  double s = _remesh.s[n.k] + n.t * (_remesh.s[n.k + 1] - _remesh.s[n.k]);
   // The attachments (on the wall, not in the curve) lie beyond its ends
   const auto& g = _profile.geometry();
   if (std::hypot(X[0], X[1] - g.half_height) < best)

@@ -213,23 +213,37 @@ double
 fsai::glottis::FoldProfile::arc_length(const std::array<double, 2>& X) const
 {
   // Of the nearest point of the polyline
-  double best = std::numeric_limits<double>::infinity(), s = 0, arc = 0;
-  for (std::size_t i = 0; i + 1 < _pts.size(); ++i)
+  const auto n = nearest_on_polyline(_pts, X);
+  auto length = [&](std::size_t i)
   {
-    const auto& P = _pts[i];
-    const double tx = _pts[i + 1][0] - P[0], ty = _pts[i + 1][1] - P[1];
-    const double l2 = tx * tx + ty * ty;
-    const double f
-        = std::clamp(((X[0] - P[0]) * tx + (X[1] - P[1]) * ty) / l2, 0.0, 1.0);
-    const double dx = P[0] + f * tx - X[0], dy = P[1] + f * ty - X[1];
-    if (dx * dx + dy * dy < best)
-    {
-      best = dx * dx + dy * dy;
-      s = arc + f * std::sqrt(l2);
-    }
-    arc += std::sqrt(l2);
+    const double tx = _pts[i + 1][0] - _pts[i][0],
+                 ty = _pts[i + 1][1] - _pts[i][1];
+    return std::sqrt(tx * tx + ty * ty);
+  };
+  double arc = 0;
+  for (std::size_t i = 0; i < n.k; ++i)
+    arc += length(i);
+  return arc + n.t * length(n.k);
+}
+
+fsai::glottis::PolylinePoint
+fsai::glottis::nearest_on_polyline(const std::vector<std::array<double, 2>>& p,
+                                   const std::array<double, 2>& X)
+{
+  PolylinePoint best{0, 0, std::numeric_limits<double>::infinity()};
+  for (std::size_t k = 0; k + 1 < p.size(); ++k)
+  {
+    const double ex = p[k + 1][0] - p[k][0], ey = p[k + 1][1] - p[k][1];
+    const double l2 = ex * ex + ey * ey;
+    const double t
+        = l2 > 0 ? std::clamp(
+              ((X[0] - p[k][0]) * ex + (X[1] - p[k][1]) * ey) / l2, 0.0, 1.0)
+                 : 0.0;
+    const double dx = p[k][0] + t * ex - X[0], dy = p[k][1] + t * ey - X[1];
+    if (dx * dx + dy * dy < best.d2)
+      best = {k, t, dx * dx + dy * dy};
   }
-  return s;
+  return best;
 }
 
 namespace

@@ -111,6 +111,18 @@ private:
   std::vector<double> _wmid;
 };
 
+/// The point of the open polyline p nearest to X: on segment k (p[k] to
+/// p[k + 1]) at the fraction t ∈ [0, 1], at the squared distance d2 (the
+/// first such segment on ties)
+struct PolylinePoint
+{
+  std::size_t k = 0;
+  double t = 0;
+  double d2 = 0;
+};
+PolylinePoint nearest_on_polyline(const std::vector<std::array<double, 2>>& p,
+                                  const std::array<double, 2>& X);
+
 /// Whether X lies inside the closed polygon p (the last point joined to the
 /// first; even–odd rule)
 bool polygon_contains(const std::vector<std::array<double, 2>>& p,

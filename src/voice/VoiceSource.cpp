@@ -332,29 +332,12 @@ fsai::voice::FoldWall fsai::voice::fold_wall(const glottis::ElasticFold& fold)
   const auto& X0 = fold.surface_reference();
   w.velocity = [X0, v = fold.surface_velocity()](const std::array<double, 2>& X)
   {
-    // The nearest point of the rest surface's polyline, its segment k at
-    // the fraction t
-    double best = std::numeric_limits<double>::infinity(), tb = 0;
-    std::size_t kb = 0;
-    for (std::size_t k = 0; k + 1 < X0.size(); ++k)
-    {
-      const double ex = X0[k + 1][0] - X0[k][0], ey = X0[k + 1][1] - X0[k][1];
-      const double L2 = ex * ex + ey * ey;
-      const double t
-          = L2 > 0 ? std::clamp(
-                ((X[0] - X0[k][0]) * ex + (X[1] - X0[k][1]) * ey) / L2, 0.0,
-                1.0)
-                   : 0.0;
-      const double dx = X0[k][0] + t * ex - X[0], dy = X0[k][1] + t * ey - X[1];
-      if (dx * dx + dy * dy < best)
-      {
-        best = dx * dx + dy * dy;
-        kb = k;
-        tb = t;
-      }
-    }
-    return std::array<double, 2>{(1 - tb) * v[kb][0] + tb * v[kb + 1][0],
-                                 (1 - tb) * v[kb][1] + tb * v[kb + 1][1]};
+    // Linear between the surface points, at the nearest point of the rest
+    // surface's polyline
+    const auto n = glottis::nearest_on_polyline(X0, X);
+    const double t = n.t;
+    return std::array<double, 2>{(1 - t) * v[n.k][0] + t * v[n.k + 1][0],
+                                 (1 - t) * v[n.k][1] + t * v[n.k + 1][1]};
   };
   return w;
 }
