@@ -1,20 +1,26 @@
 #!/usr/bin/python3
 """The elastic fold in the FE flow through closure: the preset
 demos/glottis/elastic_fe.toml (clamped ends, porous ramp, Newmark γ 0.6,
-remeshing, IQN-ILS) for 0.2 s from rest at p_sub 400, 800 and 1200 Pa;
-with --check, the 800 Pa run again on the finer mesh (h_gap 0.035 mm) and
-at Δt 1e-5.
+local lift, remeshing, attachment wedges, IQN-ILS) for 0.2 s from rest at
+p_sub 400, 800 and 1200 Pa; with --check, the 800 Pa run for 0.1 s on the
+finer mesh (h_gap 0.035 mm) and at Δt 1e-5, serially, its cycles from
+50 ms to 0.1 s compared with the default's over the same window.
 
-Runs on 2 ranks, one at a time (each 25-60 min); a run whose summary.json
-exists is not repeated. Writes bench/results/glottis_elastic_fe.csv and
-prints a Markdown table.
+The 0.2 s runs go on 2 ranks, one at a time (about 20 min each); a run
+whose summary.json exists is not repeated. Writes
+bench/results/glottis_elastic_fe.csv (and glottis_elastic_fe_check.csv)
+and prints Markdown tables.
 
-usage: bench/glottis_elastic_fe.py [--check] [BUILD_DIR]
+usage: bench/glottis_elastic_fe.py [--check] [--cached] [BUILD_DIR]
+(--cached: tables from the runs already in bench/results, none started)
 """
 import os
 import sys
 
-from benchlib import MPI_ENV, print_markdown_table, results_dir, timed_run, write_rows
+import numpy as np
+
+from benchlib import (MPI_ENV, glottal_cycles, print_markdown_table, results_dir, timed_run,
+                      write_rows)
 
 args = [a for a in sys.argv[1:] if not a.startswith("--")]
 here = os.path.dirname(os.path.abspath(__file__))
@@ -23,15 +29,18 @@ exe = os.path.join(build, "demos", "fsai_glottis")
 out = results_dir()
 common = ["--config", os.path.join(here, "..", "demos", "glottis", "elastic_fe.toml"),
           "--duration", "0.2"]
-cases = [(f"p{p}", ["--p-sub", str(p)]) for p in (800, 1200, 400)]
+cases = [(f"p{p}", 2, ["--p-sub", str(p)]) for p in (800, 1200, 400)]
+check = [("p800_h0.035", 1, ["--p-sub", "800", "--duration", "0.1", "--fe.h_gap", "0.035e-3"]),
+         ("p800_dt1e-5", 1, ["--p-sub", "800", "--duration", "0.1", "--dt", "1e-5"])]
 if "--check" in sys.argv:
-    cases += [("p800_h0.035", ["--p-sub", "800", "--fe.h_gap", "0.035e-3"]),
-              ("p800_dt1e-5", ["--p-sub", "800", "--dt", "1e-5"])]
+    cases += check
 
 rows = []
-for label, extra in cases:
+for label, ranks, extra in cases:
     folder = os.path.join(out, f"run_glottis_elastic_fe_{label}")
-    s = timed_run(["mpirun", "-n", "2", exe] + common + extra + ["--output", folder],
+    if "--cached" in sys.argv and not os.path.exists(os.path.join(folder, "summary.json")):
+        continue
+    s = timed_run(["mpirun", "-n", str(ranks), exe] + common + extra + ["--output", folder],
                   folder, env=MPI_ENV)
     if s is None:
         continue
@@ -60,3 +69,29 @@ print_markdown_table([
     ("its/step", lambda r: f"{r['coupling_iterations_mean']:.2f}"),
     ("unconverged", lambda r: f"{r['coupling_unconverged_steps']}"),
     ("wall [s]", lambda r: f"{r['wall_s']:.0f}")], rows)
+
+if "--check" in sys.argv:
+    # The same window of each run: the cycles that start after 50 ms and
+    # end by 0.1 s
+    check_rows = []
+    for label in ["p800"] + [c[0] for c in check]:
+        cyc = [c for c in glottal_cycles(os.path.join(out, f"run_glottis_elastic_fe_{label}",
+                                                      "series.csv"), None, 0.05)
+               if c["t0_s"] + 1 / c["f0_hz"] <= 0.1]
+        if not cyc:
+            continue
+        check_rows.append({"case": label, "cycles": len(cyc),
+                           "f0_hz": len(cyc) / sum(1 / c["f0_hz"] for c in cyc),
+                           "q_peak_ls": float(np.mean([c["q_peak_ls"] for c in cyc])),
+                           "open_quotient": float(np.mean([c["open_quotient"] for c in cyc]))})
+    base = check_rows[0] if check_rows and check_rows[0]["case"] == "p800" else None
+    for r in check_rows:
+        r["f0_change"] = r["f0_hz"] / base["f0_hz"] - 1 if base else float("nan")
+        r["q_peak_change"] = r["q_peak_ls"] / base["q_peak_ls"] - 1 if base else float("nan")
+    write_rows(os.path.join(out, "glottis_elastic_fe_check.csv"), check_rows)
+    print_markdown_table([
+        ("case", lambda r: r["case"]),
+        ("cycles in 50-100 ms", lambda r: f"{r['cycles']}"),
+        ("f0 [Hz]", lambda r: f"{r['f0_hz']:.2f} ({100 * r['f0_change']:+.2f} %)"),
+        ("mean peak [l/s]", lambda r: f"{r['q_peak_ls']:.3f} ({100 * r['q_peak_change']:+.2f} %)"),
+        ("OQ", lambda r: f"{r['open_quotient']:.3f}")], check_rows)

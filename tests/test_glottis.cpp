@@ -562,6 +562,50 @@ TEST_CASE("Glottis channel: h_inlet coarsens the subglottal channel only",
        << " vs " << coarse[2] << " cells");
 }
 
+TEST_CASE("Crossing of a polyline with itself (the remeshed boundary's check)",
+          "[glottis]")
+{
+  using P = std::array<double, 2>;
+  // A zig-zag that does not cross, then one that folds back across itself
+  const std::vector<P> ok = {{0, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 0}, {3, 0}};
+  CHECK(!polyline_crossing(ok));
+  const std::vector<P> bad = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, -1}};
+  const auto c = polyline_crossing(bad);
+  REQUIRE(c);
+  CHECK((*c)[0] == Approx(1));
+  CHECK((*c)[1] == Approx(0).margin(1e-15));
+  // Adjacent segments meeting at their shared point are no crossing
+  CHECK(!polyline_crossing({{0, 0}, {1, 0}, {0, 1e-9}}));
+}
+
+TEST_CASE("Attachment wedges (G3a): the fluid boundary below the wall and "
+          "outside the narrow wedges at the attachments",
+          "[glottis]")
+{
+  GlottisGeometry g; // H 8 mm, T 9 mm
+  const double H = g.half_height, T = g.fold_length, a = 30;
+  const double tan_a = std::tan(a * M_PI / 180);
+  std::vector<std::array<double, 2>> x
+      = {{T + 0.1e-3, H - 1e-6},   // rolled onto the wall past (T, H)
+         {T + 0.1e-3, H - 0.1e-3}, // below the line: kept
+         {-0.2e-3, H - 2e-6},      // past the inferior attachment
+         {4e-3, H + 5e-6},         // above the wall between the attachments
+         {5e-3, 0.1e-3},           // the medial surface: kept
+         {T, H}};                  // the attachment itself: kept
+  auto y = x;
+  keep_out_of_wedges(y, g, a);
+  CHECK(y[0][0] == x[0][0]);
+  CHECK(y[0][1] == Approx(H - tan_a * 0.1e-3).margin(1e-15));
+  CHECK(y[1] == x[1]);
+  CHECK(y[2][1] == Approx(H - tan_a * 0.2e-3).margin(1e-15));
+  CHECK(y[3][1] == H);
+  CHECK(y[4] == x[4]);
+  CHECK(y[5] == x[5]);
+  auto z = x;
+  keep_out_of_wedges(z, g, 0); // off
+  CHECK(z == x);
+}
+
 TEST_CASE("Elastic fold of the glottis scene: the flow's fold nodes, "
           "in-vacuo modes converge",
           "[glottis][mpi]")
@@ -593,7 +637,7 @@ TEST_CASE("Elastic fold of the glottis scene: the flow's fold nodes, "
     pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
     return pts;
   };
-  auto modes = [](const fsai::mesh::MeshData& solid)
+  auto modes = [&](const fsai::mesh::MeshData& solid, double band = 0)
   {
     fsai::structure::SolidParameters p;
     p.degree = 2;
@@ -601,6 +645,16 @@ TEST_CASE("Elastic fold of the glottis scene: the flow's fold nodes, "
     fsai::structure::ElasticSolver fold(
         solid.mesh, solid.facet_tags->find(solid.facet_tag("attachment")), {},
         p, 1.0);
+    if (band > 0)
+    {
+      // The attachment band held (--elastic.attachment_band): its dofs
+      const auto X = fold.space()->tabulate_dof_coordinates(false);
+      std::vector<std::int32_t> d;
+      for (std::size_t i = 0; i < X.size() / 3; ++i)
+        if (X[3 * i + 1] >= profile.geometry().half_height - band)
+          d.push_back(std::int32_t(i));
+      fold.fix_dofs(d);
+    }
     std::vector<double> f;
     for (const auto& m : fsai::structure::modal_analysis(fold, 3))
       f.push_back(m.frequency_hz);
@@ -623,6 +677,13 @@ TEST_CASE("Elastic fold of the glottis scene: the flow's fold nodes, "
   WARN("elastic fold (plane strain, E 8 kPa, nu 0.4), f1..f3: coarse "
        << fc[0] << ", " << fc[1] << ", " << fc[2] << " Hz; fine " << ff[0]
        << ", " << ff[1] << ", " << ff[2] << " Hz");
+  // Holding the 3 mm attachment band leaves a shallower vibrating part:
+  // every mode stiffer
+  const auto fb = modes(coarse.solid, 3e-3);
+  for (int i = 0; i < 3; ++i)
+    CHECK(fb[i] > 1.2 * fc[i]);
+  WARN("with the 3 mm attachment band held: " << fb[0] << ", " << fb[1] << ", "
+                                              << fb[2] << " Hz");
 }
 
 TEST_CASE("Body-cover elastic fold: the cover is the band under the "

@@ -22,6 +22,7 @@
 #include <common/Parameters.h>
 #include <common/Runtime.h>
 #include <common/timer.h>
+#include <glottis/FlowOutput.h>
 #include <glottis/FoldSurfaceRecord.h>
 #include <glottis/GlottisScene.h>
 #include <io/RunLoop.h>
@@ -70,22 +71,16 @@ int main(int argc, char* argv[])
           summary.write(sp.output + "/summary.json");
           return;
         }
-        std::unique_ptr<io::TimeSeriesWriter> flow_xdmf, fold_xdmf;
-        auto writer = [&](const std::string& name, auto fields)
-        {
-          return sp.write_every > 0 and !fields.empty()
-                     ? std::make_unique<io::TimeSeriesWriter>(
-                         sp.output + "/" + name, fields, loop.restart_time())
-                     : nullptr;
-        };
         if (loop.restarting())
           model->restore(loop.checkpoint(), loop.fields());
-        // A remeshed flow (--fe.remesh_quality) continues in a new file,
-        // opened at its first write
-        int meshes = model->remeshes();
-        const bool flow_out
-            = sp.write_every > 0 and !model->flow_fields().empty();
-        fold_xdmf = writer("fold.xdmf", model->fold_fields());
+        // A remeshed flow (--fe.remesh_quality) continues in a new file
+        fsai::glottis::FlowOutput flow_xdmf(sp.output, *model,
+                                            loop.restart_time());
+        std::unique_ptr<io::TimeSeriesWriter> fold_xdmf;
+        if (sp.write_every > 0 and !model->fold_fields().empty())
+          fold_xdmf = std::make_unique<io::TimeSeriesWriter>(
+              sp.output + "/fold.xdmf", model->fold_fields(),
+              loop.restart_time());
         std::unique_ptr<fsai::glottis::FoldSurfaceRecord> surface;
         if (sp.surface_every > 0)
           surface = std::make_unique<fsai::glottis::FoldSurfaceRecord>(
@@ -119,18 +114,8 @@ int main(int argc, char* argv[])
         hooks.step = [&](long k)
         {
           s = model->step();
-          if (flow_out and k % sp.write_every == 0)
-          {
-            if (!flow_xdmf or model->remeshes() != meshes)
-            {
-              meshes = model->remeshes();
-              flow_xdmf = writer(
-                  meshes == 0 ? std::string("flow.xdmf")
-                              : fmt::format("flow_remeshed{}.xdmf", meshes),
-                  model->flow_fields());
-            }
-            flow_xdmf->write(s.t);
-          }
+          if (sp.write_every > 0 and k % sp.write_every == 0)
+            flow_xdmf.write(s.t);
           if (fold_xdmf and k % sp.write_every == 0)
             fold_xdmf->write(s.t);
           if (surface)

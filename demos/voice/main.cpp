@@ -35,6 +35,7 @@
 #include <common/Runtime.h>
 #include <common/log.h>
 #include <common/timer.h>
+#include <glottis/FlowOutput.h>
 #include <io/RunLoop.h>
 #include <io/RunSummary.h>
 #include <io/csv_columns.h>
@@ -94,13 +95,7 @@ int main(int argc, char* argv[])
         summary.set("tract_formants_hz", tract.formants);
         summary.set("tract_bandwidths_hz", tract.bandwidths);
         summary.set("domain_formants_hz", tract.domain_formants);
-        std::unique_ptr<io::TimeSeriesWriter> flow_xdmf, sound_xdmf;
-        if (vp.write_every > 0 and !glottis->flow_fields().empty())
-        {
-          flow_xdmf = std::make_unique<io::TimeSeriesWriter>(
-              vp.output + "/flow.xdmf", glottis->flow_fields(),
-              loop.restart_time());
-        }
+        std::unique_ptr<io::TimeSeriesWriter> sound_xdmf;
         if (vp.write_every > 0 and !sound->fields().empty())
         {
           sound_xdmf = std::make_unique<io::TimeSeriesWriter>(
@@ -114,6 +109,9 @@ int main(int argc, char* argv[])
           glottis->restore(loop.checkpoint(), loop.fields());
           sound->restore(loop.checkpoint(), loop.fields());
         }
+        // A remeshed flow (--fe.remesh_quality) continues in a new file
+        fsai::glottis::FlowOutput flow_xdmf(vp.output, *glottis,
+                                            loop.restart_time());
         const long n = std::lround(vp.duration / vp.dt);
         std::vector<double> t, g, Q, p_mic;
         long its = 0;
@@ -152,8 +150,8 @@ int main(int argc, char* argv[])
           its += s.iterations;
           if (k % std::max(vp.write_every, 1) == 0)
           {
-            if (flow_xdmf)
-              flow_xdmf->write(s.t);
+            if (vp.write_every > 0)
+              flow_xdmf.write(s.t);
             if (sound_xdmf)
               sound_xdmf->write(s.t);
           }
@@ -178,6 +176,7 @@ int main(int argc, char* argv[])
         fsai::common::ScopedTimer analysis("demo: analysis");
         const auto measures = fsai::voice::analyse_voice(
             rt.comm(), scene, tract, t, g, Q, p_mic, summary);
+        glottis->report(summary);
         summary.set("steps", n);
         summary.set("coupling_iterations_mean", double(its) / double(n));
         summary.set("coupling_unconverged_steps", loop.unconverged_steps());

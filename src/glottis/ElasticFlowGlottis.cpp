@@ -12,6 +12,7 @@
 #include <io/TimeSeriesWriter.h>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
 
 namespace
 {
@@ -68,16 +69,24 @@ fsai::glottis::ElasticFlowGlottis::arc_length(const std::array<double, 2>& X)
   if (_remesh.count == 0)
     return it->second = _profile.arc_length(X);
   // Remeshed: the arc length of the nearest point of the boundary as it was
-  // meshed (linear between its points)
-  const auto n = nearest_on_polyline(_remesh.curve, X);
-  const double best = std::sqrt(n.d2);
-  double s = _remesh.s[n.k] + n.t * (_remesh.s[n.k + 1] - _remesh.s[n.k]);
-  // The attachments (on the wall, not in the curve) lie beyond its ends
+  // meshed (linear between its points), the attachments (on the wall, not
+  // in the curve) at its ends
   const auto& g = _profile.geometry();
-  if (std::hypot(X[0], X[1] - g.half_height) < best)
-    s = 0;
-  else if (std::hypot(X[0] - g.fold_length, X[1] - g.half_height) < best)
-    s = _s.back();
+  const auto& c = _remesh.curve;
+  const auto& cs = _remesh.s;
+  auto n = nearest_on_polyline(c, X);
+  double s = cs[n.k] + n.t * (cs[n.k + 1] - cs[n.k]);
+  for (const auto& [a, b, sa, sb] :
+       {std::tuple{std::array<double, 2>{0, g.half_height}, c.front(), 0.0,
+                   cs.front()},
+        std::tuple{c.back(),
+                   std::array<double, 2>{g.fold_length, g.half_height},
+                   cs.back(), _s.back()}})
+  {
+    const auto e = nearest_on_polyline({a, b}, X);
+    if (e.d2 < n.d2)
+      n = e, s = sa + e.t * (sb - sa);
+  }
   return it->second = s;
 }
 //-----------------------------------------------------------------------------
@@ -104,9 +113,29 @@ std::vector<double> fsai::glottis::ElasticFlowGlottis::local_lifts(
   return l;
 }
 //-----------------------------------------------------------------------------
-void fsai::glottis::ElasticFlowGlottis::move_boundary(
-    double t, const std::vector<std::array<double, 2>>& x)
+void fsai::glottis::keep_out_of_wedges(std::vector<std::array<double, 2>>& x,
+                                       const GlottisGeometry& g, double angle)
 {
+  if (angle <= 0)
+    return;
+  // Below the wall, and below the lines through the attachments (0, H)
+  // and (T, H) at the wedge angle to it, on the fluid's side of each
+  const double H = g.half_height, T = g.fold_length;
+  const double slope = std::tan(angle * M_PI / 180);
+  for (auto& p : x)
+  {
+    const double beyond = std::max({0.0, -p[0], p[0] - T});
+    p[1] = std::min(p[1], H - slope * beyond);
+  }
+}
+//-----------------------------------------------------------------------------
+void fsai::glottis::ElasticFlowGlottis::move_boundary(
+    double t, std::vector<std::array<double, 2>> x)
+{
+  // The fluid's fold boundary follows the surface x, less the wedges at the
+  // attachments (G3a): the displacements below, the porous region and, at
+  // a remeshing, the reference are all of that boundary
+  keep_out_of_wedges(x, _profile.geometry(), _par.wedge_angle);
   const auto& X = _fold.surface_reference();
   const double lift = boundary_lift(lowest_point(x), _par.g_min);
   const bool remeshed = _remesh.count > 0;
@@ -418,6 +447,20 @@ void fsai::glottis::ElasticFlowGlottis::remesh()
   {
     r.s.push_back(p[0]);
     r.curve.push_back({p[1], p[2]});
+  }
+  {
+    // gmsh cannot mesh a boundary that crosses itself (and its error,
+    // thrown in an OpenMP region, would end the process): say where
+    const auto& g = _profile.geometry();
+    std::vector<std::array<double, 2>> b = {{-g.inlet_length, H}, {0, H}};
+    b.insert(b.end(), r.curve.begin(), r.curve.end());
+    b.insert(b.end(),
+             {{g.fold_length, H}, {g.fold_length + g.outlet_length, H}});
+    if (const auto c = polyline_crossing(b))
+      throw std::runtime_error(fmt::format(
+          "remeshing at t = {:.5f} s: the fold boundary crosses itself near "
+          "({:.4g}, {:.4g}) mm; it cannot be meshed",
+          _t, 1e3 * (*c)[0], 1e3 * (*c)[1]));
   }
   // The fold's displacement and the lift the fluid boundary was moved by
   const auto& X = _fold.surface_reference();

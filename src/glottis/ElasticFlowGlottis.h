@@ -58,6 +58,12 @@
 
 namespace fsai::glottis
 {
+/// Moves the fold surface points x below the wall y = H and out of the
+/// wedges narrower than `angle` [°] at the attachments (0, H) and (T, H)
+/// on the fluid's side of each (G3a; angle 0: unchanged)
+void keep_out_of_wedges(std::vector<std::array<double, 2>>& x,
+                        const GlottisGeometry& g, double angle);
+
 class ElasticFlowGlottis : public GlottisModel
 {
 public:
@@ -106,7 +112,8 @@ public:
 private:
   /// Fluid boundary, mesh, mesh velocity and Ω^P_t for the moved fold
   /// surface x (all ordered points)
-  void move_boundary(double t, const std::vector<std::array<double, 2>>& x);
+  void move_boundary(double t, std::vector<std::array<double, 2>> x);
+
   /// The fluid pressure at the fold's ordered surface points
   std::vector<double> surface_pressure();
   /// Arc length of a reference point of the fluid's fold boundary (cached:

@@ -34,6 +34,10 @@ void fsai::glottis::ElasticFoldParameters::bind(fsai::common::Parameters& p)
         "--elastic.layers 2: Poisson's ratio of the cover");
   p.add("elastic.cover.rho", cover_material.rho,
         "--elastic.layers 2: density of the cover [kg/m^3]");
+  p.add("elastic.attachment_band", attachment_band,
+        "--fold elastic: the fold within this distance of the wall held "
+        "fixed (the body on the cartilage, as the 2-DOF fold's "
+        "glottis.taper band); 0: held only along the wall [m]");
   p.add("elastic.zeta", zeta,
         "--fold elastic: damping ratio at elastic.f_zeta_low and _high "
         "(Rayleigh damping)");
@@ -74,6 +78,8 @@ void fsai::glottis::ElasticFoldParameters::validate() const
   fsai::require(cover >= h_surface, "--elastic.cover_thickness",
                 ">= --elastic.h_surface (at least one layer of cells)", cover);
   cover_material.validate("--elastic.cover");
+  fsai::require(attachment_band >= 0, "--elastic.attachment_band", ">= 0",
+                attachment_band);
   fsai::require(zeta >= 0 and zeta < 1, "--elastic.zeta", "in [0, 1)", zeta);
   fsai::require_positive("--elastic.f_zeta_high", f_zeta_high);
   fsai::require(f_zeta_low >= 0 and f_zeta_low < f_zeta_high,
@@ -139,6 +145,26 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
     // cells within `cover` of the profile are the cover
     _cover = mesh::cells_near_curve(*_mesh.mesh, profile.points(), p.cover);
     _solver->set_material(_cover, p.cover_material);
+  }
+  if (p.attachment_band > 0)
+  {
+    // Every dof (owned and ghost) within the band; the cells the band's edge
+    // cuts are held at their dofs inside it
+    const auto& g = profile.geometry();
+    fsai::require(p.attachment_band
+                      < g.half_height - g.rest_gap - 2 * g.medial_radius,
+                  "--elastic.attachment_band",
+                  "< glottis.half_height - rest_gap - 2 medial_radius (the "
+                  "medial surface must vibrate)",
+                  p.attachment_band);
+    const auto V = _solver->space();
+    const std::vector<double> X = V->tabulate_dof_coordinates(false);
+    const double y0 = g.half_height - p.attachment_band;
+    std::vector<std::int32_t> band;
+    for (std::size_t d = 0; d < X.size() / 3; ++d)
+      if (X[3 * d + 1] >= y0)
+        band.push_back(std::int32_t(d));
+    _solver->fix_dofs(band);
   }
   if (p.contact == "hertz")
   {

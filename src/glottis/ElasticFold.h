@@ -48,6 +48,14 @@ struct ElasticFoldParameters
   /// the rest (the body) of `material` (as `fsai_modal --layers 2`)
   int layers = 1;
   double cover = 1e-3; ///< cover thickness [m]
+  /// > 0: the fold within this distance of the wall (y ≥ H − band) is held
+  /// fixed, the body attached to the thyroid cartilage, as the 2-DOF
+  /// fold's attachment band (glottis.taper, G1) is. 0: the whole section
+  /// vibrates, held only along the wall. A soft fold held only there
+  /// shears so far downstream (0.4 mm at 1 mm from the wall at 800 Pa)
+  /// that its superior surface rolls onto the wall at the superior
+  /// attachment, and the fluid's corner there collapses (docs/glottis.md)
+  double attachment_band = 0; ///< [m]
   structure::Material cover_material{2e3, 0.4, 1000.0};
   /// Rayleigh damping D = ε1 M + ε2 K with the damping ratio ζ at both
   /// f_zeta_low and f_zeta_high (ε1 = 2ζ ω_l ω_h/(ω_l + ω_h), ε2 = 2ζ/(ω_l

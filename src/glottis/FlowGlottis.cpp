@@ -57,6 +57,10 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
   p.add_choice("closure.lift", lift, {"uniform", "local"},
                "elastic fold: the fluid boundary lifted above g_min as a whole "
                "(uniform) or around the points below 2 g_min (local)");
+  p.add("closure.wedge_angle", wedge_angle,
+        "elastic fold: the fluid boundary kept out of the wedge narrower "
+        "than this at each attachment of the fold to the wall (0: not "
+        "kept) [deg]");
   p.add("fe.superpose_motion", superpose_motion,
         "move the mesh by superposing three precomputed extensions of the "
         "fold motion (exact for the linear extension) instead of solving "
@@ -81,6 +85,8 @@ void fsai::glottis::FlowGlottisParameters::validate() const
   fsai::require_positive("--closure.g_min", g_min);
   fsai::require(porous_ramp >= 0, "--closure.porous_ramp", ">= 0", porous_ramp);
   fsai::require(gap_columns >= 0, "--closure.gap_columns", ">= 0", gap_columns);
+  fsai::require(wedge_angle >= 0 and wedge_angle < 90, "--closure.wedge_angle",
+                "in [0, 90)", wedge_angle);
   fsai::require(remesh_quality >= 0 and remesh_quality < 1,
                 "--fe.remesh_quality", "in [0, 1)", remesh_quality);
 }

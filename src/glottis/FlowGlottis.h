@@ -100,6 +100,13 @@ struct FlowGlottisParameters
   /// phase the contact point's motion does not move the whole fluid
   /// boundary
   std::string lift = "uniform";
+  /// Elastic fold: the smallest angle [°] of the fluid's corner between
+  /// the fold surface and the wall at each attachment (0: none). A soft
+  /// fold's superior surface can roll onto the wall at its attachment
+  /// (the linear fold does not feel the wall), which closes the fluid's
+  /// corner there; the fluid boundary is kept out of the narrower wedge
+  /// (G3a), as the lift keeps it off the axis
+  double wedge_angle = 30;
   void bind(fsai::common::Parameters& p);
   void validate() const;
 };

@@ -280,6 +280,31 @@ std::pair<bool, double> locate(const std::vector<std::array<double, 2>>& p,
 }
 } // namespace
 
+std::optional<std::array<double, 2>>
+fsai::glottis::polyline_crossing(const std::vector<std::array<double, 2>>& p)
+{
+  using P = std::array<double, 2>;
+  auto cross = [](const P& o, const P& a, const P& b)
+  { return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); };
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    for (std::size_t j = i + 2; j + 1 < n; ++j)
+    {
+      const P &a = p[i], &b = p[i + 1], &c = p[j], &d = p[j + 1];
+      const double d1 = cross(c, d, a), d2 = cross(c, d, b);
+      const double d3 = cross(a, b, c), d4 = cross(a, b, d);
+      // Proper crossings only: segments i and i + 2 meeting at a point
+      // shared with i + 1 cannot, as they share none
+      if (((d1 > 0 and d2 < 0) or (d1 < 0 and d2 > 0))
+          and ((d3 > 0 and d4 < 0) or (d3 < 0 and d4 > 0)))
+      {
+        const double t = d1 / (d1 - d2);
+        return P{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
+      }
+    }
+  return std::nullopt;
+}
+//-----------------------------------------------------------------------------
 bool fsai::glottis::polygon_contains(
     const std::vector<std::array<double, 2>>& p, const std::array<double, 2>& X)
 {

@@ -35,6 +35,7 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace fsai::common
@@ -122,6 +123,11 @@ struct PolylinePoint
 };
 PolylinePoint nearest_on_polyline(const std::vector<std::array<double, 2>>& p,
                                   const std::array<double, 2>& X);
+
+/// The first proper crossing of two non-adjacent segments of the open
+/// polyline p, or nullopt
+std::optional<std::array<double, 2>>
+polyline_crossing(const std::vector<std::array<double, 2>>& p);
 
 /// Whether X lies inside the closed polygon p (the last point joined to the
 /// first; even–odd rule)

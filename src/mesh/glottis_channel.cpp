@@ -54,7 +54,11 @@ void build_channel(const fsai::glottis::FoldProfile& profile,
   const int axis = geo::addLine(p_in0, p_out0);
   const int outlet = geo::addLine(p_out0, p_out1);
   const int wall_sup = geo::addLine(p_out1, p_sup);
-  const int fold = geo::addSpline(spline);
+  // A remeshed boundary is the old mesh's, straight between its nodes: a
+  // spline through them would overshoot where the fold surface turns
+  // sharply (at the attachments, onto the wall)
+  const int fold
+      = curve.empty() ? geo::addSpline(spline) : geo::addPolyline(spline);
   const int wall_inf = geo::addLine(p_inf, p_in1);
   const int inlet = geo::addLine(p_in1, p_in0);
   const int loop

@@ -45,7 +45,7 @@ struct ChannelSizes
 MeshData glottis_channel(MPI_Comm comm, const glottis::FoldProfile& profile,
                          const ChannelSizes& sizes);
 
-/// The same channel with the fold surface a spline through `curve`, the
+/// The same channel with the fold surface the polyline through `curve`, the
 /// moved fold's surface points from the inferior to the superior
 /// attachment (without them; they stay at (0, H) and (T, H)): the mesh of a
 /// remeshed fold (docs/model.md E13a)

@@ -204,6 +204,18 @@ fsai::structure::ElasticSolver::ElasticSolver(
   _solver.set_operator(_Jmat.mat());
 }
 //-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::fix_dofs(
+    std::span<const std::int32_t> dofs)
+{
+  auto zero = std::make_shared<fem::Function<double>>(_V);
+  zero->x()->set(0.0);
+  std::vector<std::int32_t> d(dofs.begin(), dofs.end());
+  std::sort(d.begin(), d.end());
+  d.erase(std::unique(d.begin(), d.end()), d.end());
+  _bcs.push_back(std::make_shared<const fem::DirichletBC<double>>(zero, d));
+  _J_current = false;
+}
+//-----------------------------------------------------------------------------
 void fsai::structure::ElasticSolver::set_material(
     std::span<const std::int32_t> cells, const Material& m)
 {

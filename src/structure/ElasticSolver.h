@@ -101,6 +101,9 @@ public:
                 std::span<const std::int32_t> loaded,
                 const SolidParameters& params, double dt);
 
+  /// Hold these dofs (block indices of this rank, owned and ghost) at
+  /// u = 0 too; call before solving
+  void fix_dofs(std::span<const std::int32_t> dofs);
   /// Material of the given cells (local indices); call before solving
   void set_material(std::span<const std::int32_t> cells, const Material& m);
   /// Body acceleration g [m/s²] (gravity), scaled by the load factor

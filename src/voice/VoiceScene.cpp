@@ -184,11 +184,6 @@ void fsai::voice::VoiceScene::validate()
   bernoulli.p_sub = voice.p_sub;
   bernoulli.dt = voice.dt;
   elastic.validate();
-  // The FE sound's source reads the flow on its mesh (VoiceAcoustics):
-  // a remeshed channel is not carried to it
-  fsai::require(glottis.fe.remesh_quality == 0, "--fe.remesh_quality",
-                "0 in the voice (remeshing is for fsai_glottis)",
-                glottis.fe.remesh_quality);
   wave.validate();
   domain.layer = voice.radiation == "pml" ? voice.layer : 0.0;
   domain.radiation_region = voice.radiation != "piston";

@@ -79,7 +79,8 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
                                       const mesh::MeshData& am,
                                       acoustics::WaveSolver& sound, double dt)
     : _par(p), _profile(profile), _sound(sound), _dt(dt),
-      _g_min(setup.fe.g_min), _mu(setup.fluid.mu), _rho(setup.fluid.rho)
+      _g_min(setup.fe.g_min), _mu(setup.fluid.mu), _rho(setup.fluid.rho),
+      _comm(comm)
 {
   const auto& geo = setup.geometry;
   // The slit (A5): the acoustic cells under the fold at rest (the glottal
@@ -139,13 +140,6 @@ fsai::voice::VoiceSource::VoiceSource(MPI_Comm comm,
   // inlet and before the outlet
   if (!channel)
     _par.lighthill = false;
-  else
-  {
-    _transfer = std::make_unique<acoustics::FlowSource>(
-        comm, *channel->flow().velocity_space(),
-        channel->reference_coordinates(),
-        *sound.flow_velocity().function_space());
-  }
   {
     auto ramp = [](double s) // 0 → 0, 1 → 1
     {
@@ -199,6 +193,14 @@ void fsai::voice::VoiceSource::apply(const FoldWall& fold,
 {
   if (_par.lighthill and channel)
   {
+    if (channel != _transfer_channel)
+    {
+      _transfer = std::make_unique<acoustics::FlowSource>(
+          _comm, *channel->flow().velocity_space(),
+          channel->reference_coordinates(),
+          *_sound.flow_velocity().function_space());
+      _transfer_channel = channel;
+    }
     // The source at the step's midpoint, v = (v_n + v_{n+1})/2 (the
     // trapezoidal rule's own load): the flow's step-to-step (−1)^n
     // content, which the undamped Newmark scheme would store in unresolved

@@ -94,7 +94,8 @@ public:
   /// `q_last` the last converged glottal flow [m³/s]
   void start(const FoldWall& fold, double q_last);
   /// The sound's source data for the step the flow just took (`s`) with
-  /// the fold and, for the FE flow, its channel
+  /// the fold and, for the FE flow, its channel (after a remeshing a new
+  /// one: the transfer is set up again on it)
   void apply(const FoldWall& fold, const glottis::FlowChannel* channel,
              const glottis::Sample& s);
 
@@ -122,7 +123,11 @@ private:
   const glottis::FoldProfile& _profile;
   acoustics::WaveSolver& _sound;
   double _dt, _g_min, _mu, _rho;
+  MPI_Comm _comm;
   std::unique_ptr<acoustics::FlowSource> _transfer;
+  /// The channel _transfer reads: a remeshed flow (E13a) is a new channel
+  /// (made while the old one still exists, so never at the same address)
+  const glottis::FlowChannel* _transfer_channel = nullptr;
   std::shared_ptr<dolfinx::fem::Function<double>> _v_new, _v_old;
   std::array<std::size_t, 2> _monopole{};
   std::shared_ptr<acoustics::SlitLaw> _slit;
