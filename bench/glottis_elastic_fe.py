@@ -3,15 +3,22 @@
 demos/glottis/elastic_fe.toml (clamped ends, porous ramp, Newmark γ 0.6,
 local lift, remeshing, attachment wedges, IQN-ILS) for 0.2 s from rest at
 p_sub 400, 800 and 1200 Pa; with --check, the 800 Pa run for 0.1 s on the
-finer mesh (h_gap 0.035 mm) and at Δt 1e-5, serially, its cycles from
-50 ms to 0.1 s compared with the default's over the same window.
+finer mesh (h_gap 0.035 mm) and at Δt 1e-5, serially, and with the
+generalised-α fold step (ρ∞ 0.8) on 2 ranks, its cycles from 50 ms to
+0.1 s compared with the default's over the same window.
 
 The 0.2 s runs go on 2 ranks, one at a time (about 20 min each); a run
 whose summary.json exists is not repeated. Writes
 bench/results/glottis_elastic_fe.csv (and glottis_elastic_fe_check.csv)
 and prints Markdown tables.
 
-usage: bench/glottis_elastic_fe.py [--check] [--cached] [BUILD_DIR]
+With --scheme, is the fold's step what the Δt check sees? The same fold
+(clamped ends) under the Bernoulli flow at 800 Pa, 0.2 s, serially, at
+Δt 2e-5 and 1e-5 with Newmark γ 0.5 (the trapezoidal rule), γ 0.6 (the
+preset's) and generalised-α ρ∞ 0.8 (E18a): how much each step's f0 and
+peak flow move when Δt is halved. Writes glottis_elastic_scheme.csv.
+
+usage: bench/glottis_elastic_fe.py [--check] [--scheme] [--cached] [BUILD_DIR]
 (--cached: tables from the runs already in bench/results, none started)
 """
 import os
@@ -31,9 +38,39 @@ common = ["--config", os.path.join(here, "..", "demos", "glottis", "elastic_fe.t
           "--duration", "0.2"]
 cases = [(f"p{p}", 2, ["--p-sub", str(p)]) for p in (800, 1200, 400)]
 check = [("p800_h0.035", 1, ["--p-sub", "800", "--duration", "0.1", "--fe.h_gap", "0.035e-3"]),
-         ("p800_dt1e-5", 1, ["--p-sub", "800", "--duration", "0.1", "--dt", "1e-5"])]
+         ("p800_dt1e-5", 1, ["--p-sub", "800", "--duration", "0.1", "--dt", "1e-5"]),
+         ("p800_alpha0.8", 2, ["--p-sub", "800", "--duration", "0.1",
+                               "--elastic.rho_inf", "0.8"])]
 if "--check" in sys.argv:
     cases += check
+
+if "--scheme" in sys.argv:
+    schemes = [("gamma0.5", ["--elastic.newmark_gamma", "0.5"]),
+               ("gamma0.6", ["--elastic.newmark_gamma", "0.6"]),
+               ("alpha0.8", ["--elastic.rho_inf", "0.8"])]
+    srows = []
+    for name, opts in schemes:
+        runs = {}
+        for dt in ("2e-5", "1e-5"):
+            folder = os.path.join(out, f"run_glottis_elastic_scheme_{name}_dt{dt}")
+            if "--cached" in sys.argv and not os.path.exists(os.path.join(folder, "summary.json")):
+                continue
+            runs[dt] = timed_run([exe, "--flow", "bernoulli", "--fold", "elastic",
+                                  "--elastic.clamped_ends", "--p-sub", "800", "--duration", "0.2",
+                                  "--dt", dt, "--output", folder] + opts, folder)
+        if runs.get("2e-5") and runs.get("1e-5"):
+            a, b = runs["2e-5"], runs["1e-5"]
+            srows.append({"scheme": name, "f0_hz": a["f0_hz"], "q_peak_m3s": a["q_peak_m3s"],
+                          "f0_change": b["f0_hz"] / a["f0_hz"] - 1,
+                          "q_peak_change": b["q_peak_m3s"] / a["q_peak_m3s"] - 1})
+    write_rows(os.path.join(out, "glottis_elastic_scheme.csv"), srows)
+    print_markdown_table([
+        ("fold step", lambda r: r["scheme"]),
+        ("f0 at Δt 2e-5 [Hz]", lambda r: f"{r['f0_hz']:.2f}"),
+        ("peak at Δt 2e-5 [l/s]", lambda r: f"{1e3 * r['q_peak_m3s']:.3f}"),
+        ("f0 change at Δt 1e-5", lambda r: f"{100 * r['f0_change']:+.2f} %"),
+        ("peak change at Δt 1e-5", lambda r: f"{100 * r['q_peak_change']:+.2f} %")], srows)
+    sys.exit(0)
 
 rows = []
 for label, ranks, extra in cases:

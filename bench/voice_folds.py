@@ -7,16 +7,21 @@ for the elastic fold (its plane-strain fold does not close every cycle at
 800 Pa, docs/glottis.md). f0, open quotient, peak and mean flow, MFDR, SPL,
 H1–H2 and the sound's F1/F2 (summary.json "voice").
 
+With --flow fe, the full voice (FE flow, FE sound, 2 ranks, 0.1 s): the
+2-DOF fold on the voice's defaults, the elastic fold with the glottis
+scene's preset demos/glottis/elastic_fe.toml.
+
 usage: bench/voice_folds.py [BUILD_DIR] [--p_sub 800] [--vowel u]
-                            [--duration 0.3] [--acoustics 1d,fe] [--rerun]
-writes bench/results/voice_folds.csv; run folders
-bench/results/run_folds_<fold>_<p_sub>[_fe]/
+                            [--duration 0.3] [--acoustics 1d,fe]
+                            [--flow bernoulli|fe] [--rerun]
+writes bench/results/voice_folds.csv (voice_folds_fe.csv); run folders
+bench/results/run_folds_<fold>_<p_sub>[_fe][_flowfe]/
 """
 import argparse
 import csv
 import os
 
-from benchlib import timed_run
+from benchlib import MPI_ENV, timed_run
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -26,22 +31,33 @@ ap.add_argument("--vowel", default="u")
 ap.add_argument("--duration", default="0.3")
 ap.add_argument("--acoustics", default="1d,fe",
                 help="the sound's fidelities (fsai_demo --acoustics)")
+ap.add_argument("--flow", default="bernoulli", choices=["bernoulli", "fe"])
 ap.add_argument("--rerun", action="store_true")
 args = ap.parse_args()
+fe_flow = args.flow == "fe"
+if fe_flow:
+    args.acoustics = "fe"
+    if args.duration == "0.3":
+        args.duration = "0.1"
 exe = os.path.join(args.build, "demos", "fsai_demo")
 out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
 folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]}
+if fe_flow:
+    folds["elastic"] = ["--config", os.path.join(here, "..", "demos", "glottis",
+                                                 "elastic_fe.toml")]
 rows = []
 runs = [(p, ac, fold) for p in args.p_sub.split(",")
         for ac in args.acoustics.split(",") for fold in folds]
 for p, ac, fold in runs:
     opts = folds[fold]
-    d = os.path.join(out, f"run_folds_{fold}_{p}" + ("" if ac == "1d" else f"_{ac}"))
-    s = timed_run([exe, "--flow", "bernoulli", "--acoustics", ac,
+    d = os.path.join(out, f"run_folds_{fold}_{p}" + ("" if ac == "1d" else f"_{ac}")
+                     + ("_flowfe" if fe_flow else ""))
+    launch = ["mpirun", "-n", "2", exe] if fe_flow else [exe]
+    s = timed_run(launch + ["--flow", args.flow, "--acoustics", ac,
                    "--vowel", args.vowel, "--p-sub", p,
                    "--duration", args.duration, "--report=false",
-                   "--output", d] + opts, d, args.rerun)
+                   "--output", d] + opts, d, args.rerun, env=MPI_ENV)
     if s is None:
         raise SystemExit(1)
     wall = s["process_wall_s"]
@@ -59,7 +75,8 @@ for p, ac, fold in runs:
           f"MFDR {r['mfdr_ls2']:.0f} l/s², SPL {r['spl_db']:.1f} dB, H1-H2 {r['h1_h2_db']:.1f} dB, "
           f"F1/F2 {r['f1_hz']:.0f}/{r['f2_hz']:.0f} Hz, jitter {r['jitter_pct']:.2f} %, "
           f"wall {wall:.1f} s", flush=True)
-with open(os.path.join(out, "voice_folds.csv"), "w", newline="") as f:
+with open(os.path.join(out, "voice_folds_fe.csv" if fe_flow else "voice_folds.csv"), "w",
+          newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
     w.writeheader()
     for r in rows:

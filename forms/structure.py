@@ -18,6 +18,11 @@
 # with d = 1 (dynamic) or 0 (static; load factor s scales g and T for load
 # stepping). J = ∂R/∂u by UFL differentiation.
 #
+# Generalised-α (Chung–Hulbert, E18a): the inertia at t_{n+1−αm} and every
+# other force at t_{n+1−αf}, x_{n+1−α} = (1 − α) x_{n+1} + α x_n, with
+# a_n, v_n, u_n and the previous step's traction T_n; αm = αf = 0 is
+# Newmark. Static solves (d = 0) take αf = 0.
+#
 # Contact with the plane y = y_c (the symmetry axis of the glottis scene,
 # where the two folds meet): a penalty pressure on the loaded boundary
 #   p_c = k_c δ max(0, 1 + b_c δ̇ d),   δ = max(0, y_c − (X_y + u_y)),
@@ -59,6 +64,7 @@ u_n = ufl.Coefficient(V)
 v_n = ufl.Coefficient(V)
 a_n = ufl.Coefficient(V)
 traction = ufl.Coefficient(V)  # T on Γ_T (ds(1)) [Pa]
+traction_n = ufl.Coefficient(V)  # T at t_n (generalised-α) [Pa]
 
 lmbda = ufl.Coefficient(Q)   # Lamé λ [Pa]
 mu = ufl.Coefficient(Q)      # Lamé μ [Pa]
@@ -67,6 +73,8 @@ rho = ufl.Coefficient(Q)     # density [kg/m³]
 dt = ufl.Constant(mesh)
 beta = ufl.Constant(mesh)
 gamma = ufl.Constant(mesh)
+alpha_m = ufl.Constant(mesh)     # generalised-α weights (0, 0: Newmark)
+alpha_f = ufl.Constant(mesh)
 eps1 = ufl.Constant(mesh)    # Rayleigh mass coefficient [1/s]
 eps2 = ufl.Constant(mesh)    # Rayleigh stiffness coefficient [s]
 dynamic = ufl.Constant(mesh)     # 1: Newmark, 0: static
@@ -98,21 +106,28 @@ u_tilde = u_n + dt * v_n + (0.5 - beta) * dt**2 * a_n
 a = (u - u_tilde) / (beta * dt**2)
 v = v_n + dt * ((1 - gamma) * a_n + gamma * a)
 
+# Generalised-α mid-step states (static: the new state itself)
+af = alpha_f * dynamic
+a_m = (1 - alpha_m) * a + alpha_m * a_n
+v_f = (1 - af) * v + af * v_n
+u_f = (1 - af) * u + af * u_n
+T_f = (1 - af) * traction + af * traction_n
+
 # St.Venant–Kirchhoff first Piola–Kirchhoff stress (linear when nonlinear=0)
-H = grad(u)
+H = grad(u_f)
 E = sym(H) + nonlinear * 0.5 * H.T * H
 S = lmbda * tr(E) * I + 2 * mu * E
 P = (I + nonlinear * H) * S
 
 # Contact pressure on the plane y = y_c
-delta = ufl.max_value(y_c - (X[1] + u[1]), 0.0)
-p_c = k_c * delta * ufl.max_value(1.0 + b_c * dynamic * (-v[1]), 0.0)
+delta = ufl.max_value(y_c - (X[1] + u_f[1]), 0.0)
+p_c = k_c * delta * ufl.max_value(1.0 + b_c * dynamic * (-v_f[1]), 0.0)
 
-R = (dynamic * (rho * inner(a, w) + eps1 * rho * inner(v, w)
-                + eps2 * stiffness(v, w)) * dx
-     + (inner(P, grad(w)) + kz2 * mu * inner(u, w)) * dx
+R = (dynamic * (rho * inner(a_m, w) + eps1 * rho * inner(v_f, w)
+                + eps2 * stiffness(v_f, w)) * dx
+     + (inner(P, grad(w)) + kz2 * mu * inner(u_f, w)) * dx
      - load * rho * inner(g, w) * dx
-     - load * inner(traction, w) * ds(1)
+     - load * inner(T_f, w) * ds(1)
      - p_c * w[1] * ds(1))
 J = derivative(R, u, du)
 

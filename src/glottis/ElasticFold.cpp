@@ -49,6 +49,10 @@ void fsai::glottis::ElasticFoldParameters::bind(fsai::common::Parameters& p)
   p.add("elastic.newmark_gamma", newmark_gamma,
         "--fold elastic: Newmark gamma (beta = (gamma + 1/2)^2 / 4; > 1/2 "
         "damps step-to-step ringing)");
+  p.add("elastic.rho_inf", rho_inf,
+        "--fold elastic: generalised-alpha step with this spectral radius at "
+        "infinite frequency in [0, 1] (second order; replaces "
+        "elastic.newmark_gamma); < 0: Newmark");
   p.add_choice("elastic.contact", contact, {"penalty", "hertz"},
                "--fold elastic: contact with the axis, penalty "
                "(--elastic.contact_factor) or hertz (F_H = k_H delta^1.5 (1 + "
@@ -86,6 +90,8 @@ void fsai::glottis::ElasticFoldParameters::validate() const
                 "--elastic.f_zeta_low", "in [0, f_zeta_high)", f_zeta_low);
   fsai::require_positive("--elastic.contact_factor", contact_factor);
   fsai::require_range("--elastic.newmark_gamma", newmark_gamma, 0.5, 1.0);
+  fsai::require(rho_inf < 0 or rho_inf <= 1, "--elastic.rho_inf",
+                "in [0, 1] (generalised-alpha) or < 0 (Newmark)", rho_inf);
   fsai::require(contact == "penalty" or contact == "hertz", "--elastic.contact",
                 "penalty or hertz", contact);
   fsai::require(coupling == "auto" or coupling == "explicit"
@@ -123,6 +129,7 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   sp.clamped_length = p.clamped_ends ? profile.geometry().depth : 0.0;
   sp.newmark_gamma = p.newmark_gamma;
   sp.newmark_beta = 0.25 * (p.newmark_gamma + 0.5) * (p.newmark_gamma + 0.5);
+  sp.rho_inf = p.rho_inf;
   const double wl = 2 * M_PI * p.f_zeta_low, wh = 2 * M_PI * p.f_zeta_high;
   sp.rayleigh_mass = 2 * p.zeta * wl * wh / (wl + wh);
   sp.rayleigh_stiffness = 2 * p.zeta / (wl + wh);
@@ -157,14 +164,8 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
                   "< glottis.half_height - rest_gap - 2 medial_radius (the "
                   "medial surface must vibrate)",
                   p.attachment_band);
-    const auto V = _solver->space();
-    const std::vector<double> X = V->tabulate_dof_coordinates(false);
     const double y0 = g.half_height - p.attachment_band;
-    std::vector<std::int32_t> band;
-    for (std::size_t d = 0; d < X.size() / 3; ++d)
-      if (X[3 * d + 1] >= y0)
-        band.push_back(std::int32_t(d));
-    _solver->fix_dofs(band);
+    _solver->fix_where([y0](auto x) { return x[1] >= y0; });
   }
   if (p.contact == "hertz")
   {

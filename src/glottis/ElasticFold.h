@@ -70,6 +70,10 @@ struct ElasticFoldParameters
   /// nearly closed glottis the squeezed air film), for which the
   /// trapezoidal rule's amplification tends to −1 (E18)
   double newmark_gamma = 0.5;
+  /// Generalised-α step (E18a) with this ρ∞ ∈ [0, 1] instead of Newmark's
+  /// γ: second order, yet it damps the same step-to-step ringing (ρ∞ < 1);
+  /// < 0: Newmark (newmark_gamma)
+  double rho_inf = -1.0;
   /// Contact with the axis: "penalty" (k_c below) or "hertz" (G5 for the
   /// elastic fold: ElasticFold::hertz())
   std::string contact = "penalty";

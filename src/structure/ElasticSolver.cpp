@@ -42,6 +42,10 @@ void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
   p.add("solid.rho", material.rho, "density [kg/m^3]");
   p.add("solid.newmark_beta", newmark_beta, "Newmark beta");
   p.add("solid.newmark_gamma", newmark_gamma, "Newmark gamma");
+  p.add("solid.rho_inf", rho_inf,
+        "generalised-alpha: spectral radius at infinite frequency in [0, 1] "
+        "(sets beta, gamma, alpha_m, alpha_f); < 0: Newmark with "
+        "solid.newmark_beta and _gamma");
   p.add("solid.rayleigh_mass", rayleigh_mass,
         "Rayleigh eps1 (D = eps1 M + eps2 K) [1/s]");
   p.add("solid.rayleigh_stiffness", rayleigh_stiffness, "Rayleigh eps2 [s]");
@@ -73,6 +77,8 @@ void fsai::structure::SolidParameters::validate() const
   fsai::require(2 * newmark_beta >= newmark_gamma and newmark_beta <= 0.5,
                 "--solid.newmark_beta",
                 "in [gamma/2, 1/2] (unconditionally stable)", newmark_beta);
+  fsai::require(rho_inf < 0 or rho_inf <= 1, "--solid.rho_inf",
+                "in [0, 1] (generalised-alpha) or < 0 (Newmark)", rho_inf);
   fsai::require(rayleigh_mass >= 0, "--solid.rayleigh_mass", ">= 0",
                 rayleigh_mass);
   fsai::require(rayleigh_stiffness >= 0, "--solid.rayleigh_stiffness", ">= 0",
@@ -86,11 +92,25 @@ void fsai::structure::SolidParameters::validate() const
                 "--solid.newton_reuse_rate", "in (0, 1)", newton_reuse_rate);
 }
 //-----------------------------------------------------------------------------
+fsai::structure::TimeScheme
+fsai::structure::TimeScheme::from(const SolidParameters& p)
+{
+  if (p.rho_inf < 0)
+    return {p.newmark_beta, p.newmark_gamma, 0.0, 0.0};
+  // Chung & Hulbert (1993): second order, unconditionally stable, the
+  // least low-frequency damping for the given ρ∞ (docs/model.md E18a)
+  const double r = p.rho_inf;
+  const double am = (2 * r - 1) / (r + 1), af = r / (r + 1);
+  const double g = 0.5 - am + af;
+  return {0.25 * (1 - am + af) * (1 - am + af), g, am, af};
+}
+//-----------------------------------------------------------------------------
 fsai::structure::ElasticSolver::ElasticSolver(
     std::shared_ptr<const mesh::Mesh> mesh, std::span<const std::int32_t> fixed,
     std::span<const std::int32_t> loaded, const SolidParameters& params,
     double dt)
-    : _p(params), _dt(dt), _Jmat(nullptr, false), _solver(mesh->comm())
+    : _p(params), _scheme(TimeScheme::from(params)), _dt(dt),
+      _Jmat(nullptr, false), _solver(mesh->comm())
 {
   common::ScopedTimer timer("solid: setup");
   params.validate();
@@ -119,6 +139,9 @@ fsai::structure::ElasticSolver::ElasticSolver(
   _v = vec("velocity");
   _a = vec("acceleration");
   _traction = vec("traction");
+  _traction_n = vec("traction_n");
+  _T_last.assign(_traction->x()->array().size(), 0.0);
+  _T_last_t = _t;
   auto scalar = [&](const std::string& name, double value)
   {
     auto f = std::make_shared<fem::Function<double>>(Q);
@@ -144,8 +167,10 @@ fsai::structure::ElasticSolver::ElasticSolver(
   _g = std::make_shared<fem::Constant<double>>(std::span<const double>(g0));
   std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
       = {{"dt", constant(dt)},
-         {"beta", constant(params.newmark_beta)},
-         {"gamma", constant(params.newmark_gamma)},
+         {"beta", constant(_scheme.beta)},
+         {"gamma", constant(_scheme.gamma)},
+         {"alpha_m", constant(_scheme.alpha_m)},
+         {"alpha_f", constant(_scheme.alpha_f)},
          {"eps1", constant(params.rayleigh_mass)},
          {"eps2", constant(params.rayleigh_stiffness)},
          {"dynamic", _dynamic},
@@ -164,6 +189,7 @@ fsai::structure::ElasticSolver::ElasticSolver(
          {"v_n", _v_n},
          {"a_n", _a_n},
          {"traction", _traction},
+         {"traction_n", _traction_n},
          {"lmbda", _lambda},
          {"mu", _mu},
          {"rho", _rho}};
@@ -204,14 +230,16 @@ fsai::structure::ElasticSolver::ElasticSolver(
   _solver.set_operator(_Jmat.mat());
 }
 //-----------------------------------------------------------------------------
-void fsai::structure::ElasticSolver::fix_dofs(
-    std::span<const std::int32_t> dofs)
+void fsai::structure::ElasticSolver::fix_where(
+    const std::function<bool(std::span<const double, 3>)>& where)
 {
   auto zero = std::make_shared<fem::Function<double>>(_V);
   zero->x()->set(0.0);
-  std::vector<std::int32_t> d(dofs.begin(), dofs.end());
-  std::sort(d.begin(), d.end());
-  d.erase(std::unique(d.begin(), d.end()), d.end());
+  const std::vector<double> X = _V->tabulate_dof_coordinates(false);
+  std::vector<std::int32_t> d;
+  for (std::size_t i = 0; i < X.size() / 3; ++i)
+    if (where(std::span<const double, 3>(X.data() + 3 * i, 3)))
+      d.push_back(std::int32_t(i));
   _bcs.push_back(std::make_shared<const fem::DirichletBC<double>>(zero, d));
   _J_current = false;
 }
@@ -248,7 +276,7 @@ double fsai::structure::ElasticSolver::contact_force() const
 {
   // The form holds the Newmark velocity of the unknown u from u_n, v_n, a_n:
   // after a step these are the step's start, so the damping part is the
-  // step's own
+  // step's own (with generalised-α, the force at t_{n+1−α_f}, E18a)
   const double local = fem::assemble_scalar(*_F_c);
   double global = 0;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _V->mesh()->comm());
@@ -389,14 +417,24 @@ int fsai::structure::ElasticSolver::step()
     std::copy(_guess.begin(), _guess.end(), _u->x()->mutable_array().begin());
     _guess.clear();
   }
+  // T_n (E18a): the traction under which the state at this step's start
+  // was computed (the last step's, or the static solve's; 0 at rest, as
+  // a_0 = 0 assumes); a step repeated from its start (restore_state) keeps
+  // its T_n
+  if (_T_last_t == _t)
+    std::copy(_T_last.begin(), _T_last.end(),
+              _traction_n->x()->mutable_array().begin());
   _dynamic->value[0] = 1.0;
   _load->value[0] = 1.0;
   _t += _dt;
   const int its = newton("dynamic step");
   _stepped = true;
+  _T_last.assign(_traction->x()->array().begin(),
+                 _traction->x()->array().end());
+  _T_last_t = _t;
 
   // Newmark update (E18): a = (u − ũ)/(βΔt²), v = v_n + Δt((1−γ)a_n + γa)
-  const double b = _p.newmark_beta, g = _p.newmark_gamma, dt = _dt;
+  const double b = _scheme.beta, g = _scheme.gamma, dt = _dt;
   auto u = _u->x()->array(), un = _u_n->x()->array(), vn = _v_n->x()->array(),
        an = _a_n->x()->array();
   auto v = _v->x()->mutable_array(), a = _a->x()->mutable_array();
@@ -424,6 +462,9 @@ int fsai::structure::ElasticSolver::solve_static(int load_steps)
   _dynamic->value[0] = 1.0;
   _load->value[0] = 1.0;
   _J_current = false;
+  _T_last.assign(_traction->x()->array().begin(),
+                 _traction->x()->array().end());
+  _T_last_t = _t;
   return its;
 }
 //-----------------------------------------------------------------------------
@@ -447,6 +488,9 @@ void fsai::structure::ElasticSolver::save(io::RankState& state,
   for (const auto& [name, f] : {std::pair{"u", _u}, {"v", _v}, {"a", _a}})
     io::put_blocks(state, prefix + name, f->x()->array(), bs, keys, owned);
   state[prefix + "t"] = {_t};
+  // The next step's T_n (E18a), so that a restart continues identically
+  if (_T_last_t == _t)
+    io::put_blocks(state, prefix + "T_last", _T_last, bs, keys, owned);
 }
 //-----------------------------------------------------------------------------
 void fsai::structure::ElasticSolver::load(
@@ -457,6 +501,11 @@ void fsai::structure::ElasticSolver::load(
   for (const auto& [name, f] : {std::pair{"u", _u}, {"v", _v}, {"a", _a}})
     io::get_blocks(ranks, prefix + name, f->x()->mutable_array(), bs, keys);
   _t = io::state_entry(ranks.at(0), prefix + "t", 1)[0];
+  _T_last.assign(_traction->x()->array().size(), 0.0);
+  if (ranks.at(0).count(prefix + "T_last"))
+    io::get_blocks(ranks, prefix + "T_last", std::span<double>(_T_last), bs,
+                   keys);
+  _T_last_t = _t;
   _saved.clear();
   _guess.clear();
   _J_stale = true;

@@ -49,6 +49,11 @@ struct SolidParameters
   Material material; ///< default material of every cell
   double newmark_beta = 0.25;
   double newmark_gamma = 0.5;
+  /// Generalised-α (Chung–Hulbert, E18a): the spectral radius ρ∞ ∈ [0, 1]
+  /// of the step at Δt ω → ∞ sets α_m, α_f, β and γ (second order, damping
+  /// only the motion near the step's Nyquist frequency); < 0: Newmark with
+  /// newmark_beta and newmark_gamma
+  double rho_inf = -1.0;
   double rayleigh_mass = 0.0;      ///< ε1 [1/s]
   double rayleigh_stiffness = 0.0; ///< ε2 [s]
   double newton_rtol = 1e-9;       ///< on the update, relative to u
@@ -86,6 +91,15 @@ struct SolidParameters
   void validate() const;
 };
 
+/// The step's weights (E18, E18a): β, γ of Newmark's kinematics and the
+/// generalised-α points t_{n+1−α_m} (inertia), t_{n+1−α_f} (other forces)
+struct TimeScheme
+{
+  double beta, gamma, alpha_m, alpha_f;
+  /// From rho_inf (generalised-α) or newmark_beta/gamma (α_m = α_f = 0)
+  static TimeScheme from(const SolidParameters& p);
+};
+
 /// Elastic solid on a fixed reference mesh, displacement u = 0 on the
 /// `fixed` facets, traction on the `loaded` facets.
 class ElasticSolver
@@ -101,9 +115,9 @@ public:
                 std::span<const std::int32_t> loaded,
                 const SolidParameters& params, double dt);
 
-  /// Hold these dofs (block indices of this rank, owned and ghost) at
-  /// u = 0 too; call before solving
-  void fix_dofs(std::span<const std::int32_t> dofs);
+  /// Hold every dof whose point x (x, y, z) satisfies `where(x)` at u = 0
+  /// too (owned and ghost); call before solving
+  void fix_where(const std::function<bool(std::span<const double, 3>)>& where);
   /// Material of the given cells (local indices); call before solving
   void set_material(std::span<const std::int32_t> cells, const Material& m);
   /// Body acceleration g [m/s²] (gravity), scaled by the load factor
@@ -187,10 +201,16 @@ private:
   int newton(const std::string& what);
 
   const SolidParameters _p;
+  const TimeScheme _scheme;
   double _dt, _t = 0.0;
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;
   std::shared_ptr<dolfinx::fem::Function<double>> _u, _u_n, _v_n, _a_n, _v, _a,
-      _traction, _lambda, _mu, _rho;
+      _traction, _traction_n, _lambda, _mu, _rho;
+  // The traction of the last step taken (or static solve) and the time
+  // it ended at: the next step's T_n (E18a); a repeated step
+  // (restore_state) keeps its T_n
+  std::vector<double> _T_last;
+  double _T_last_t = -1.0;
   std::shared_ptr<dolfinx::fem::Constant<double>> _dynamic, _load, _g, _k_c,
       _b_c, _y_c;
   std::function<void(int)> _contact_update;
