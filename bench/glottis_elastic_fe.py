@@ -18,7 +18,14 @@ With --scheme, is the fold's step what the Δt check sees? The same fold
 preset's) and generalised-α ρ∞ 0.8 (E18a): how much each step's f0 and
 peak flow move when Δt is halved. Writes glottis_elastic_scheme.csv.
 
-usage: bench/glottis_elastic_fe.py [--check] [--scheme] [--cached] [BUILD_DIR]
+With --cuts, the Δt check with the failed steps cut (E13b, --fe.step_cuts
+2), with the preset's Newmark γ 0.6 and with generalised-α ρ∞ 0.8:
+800 Pa, 0.1 s, 2 ranks, at Δt 2e-5 and 1e-5, the cycles from 50 ms to
+0.1 s of each Δt 1e-5 run against its Δt 2e-5 partner; and the porous
+floor held at the other Δt's value (--closure.porous_floor_dt)
+(glottis_elastic_fe_cuts.csv, glottis_elastic_fe_cuts_check.csv).
+
+usage: bench/glottis_elastic_fe.py [--check] [--scheme] [--cuts] [--cached] [BUILD_DIR]
 (--cached: tables from the runs already in bench/results, none started)
 """
 import os
@@ -41,8 +48,28 @@ check = [("p800_h0.035", 1, ["--p-sub", "800", "--duration", "0.1", "--fe.h_gap"
          ("p800_dt1e-5", 1, ["--p-sub", "800", "--duration", "0.1", "--dt", "1e-5"]),
          ("p800_alpha0.8", 2, ["--p-sub", "800", "--duration", "0.1",
                                "--elastic.rho_inf", "0.8"])]
+cuts = []
+for name, opts in [("cuts2", ["--fe.step_cuts", "2"]),
+                   ("alpha0.8_cuts2", ["--fe.step_cuts", "2", "--elastic.rho_inf", "0.8"])]:
+    for dt in ("2e-5", "1e-5"):
+        cuts.append((f"p800_{name}" + ("_dt1e-5" if dt == "1e-5" else ""), 2,
+                     ["--p-sub", "800", "--duration", "0.1", "--dt", dt] + opts))
+# The porous ramp's floor χ_0 = 0.01 ρ/(σ_P Δt) changes with Δt (G4): Δt 2e-5
+# with the floor of Δt 1e-5, against the Δt 1e-5 run
+# (it fails), and Δt 1e-5 with the floor of Δt 2e-5, against the Δt 2e-5 run
+for label, dt, floor in [("p800_cuts2_floor1e-5", "2e-5", "1e-5"),
+                         ("p800_cuts2_dt1e-5_floor2e-5", "1e-5", "2e-5")]:
+    cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt,
+                            "--fe.step_cuts", "2", "--closure.porous_floor_dt", floor]))
+# Each run's Δt partner in the check table
+partners = {"p800_cuts2_dt1e-5": "p800_cuts2",
+            "p800_alpha0.8_cuts2_dt1e-5": "p800_alpha0.8_cuts2",
+            "p800_cuts2_floor1e-5": "p800_cuts2_dt1e-5",
+            "p800_cuts2_dt1e-5_floor2e-5": "p800_cuts2"}
 if "--check" in sys.argv:
     cases += check
+if "--cuts" in sys.argv:
+    cases = cuts
 
 if "--scheme" in sys.argv:
     schemes = [("gamma0.5", ["--elastic.newmark_gamma", "0.5"]),
@@ -88,11 +115,12 @@ for label, ranks, extra in cases:
                  "closed_leakage": s["closed_leakage"],
                  "max_penetration_m": s["max_penetration_m"],
                  "mesh_quality_min": s["mesh_quality_min"],
-                 "remeshes": s["remeshes"],
+                 "remeshes": s["remeshes"], "step_cuts": s.get("step_cuts", 0),
                  "coupling_iterations_mean": s["coupling_iterations_mean"],
                  "coupling_unconverged_steps": s["coupling_unconverged_steps"],
                  "flow_dofs": s["flow_dofs"], "wall_s": s["process_wall_s"]})
-write_rows(os.path.join(out, "glottis_elastic_fe.csv"), rows)
+write_rows(os.path.join(out, "glottis_elastic_fe_cuts.csv" if "--cuts" in sys.argv
+                        else "glottis_elastic_fe.csv"), rows)
 print_markdown_table([
     ("case", lambda r: r["case"]),
     ("f0 [Hz]", lambda r: f"{r['f0_hz']:.2f}"),
@@ -103,15 +131,19 @@ print_markdown_table([
     ("max δ [µm]", lambda r: f"{1e6 * r['max_penetration_m']:.1f}"),
     ("min quality", lambda r: f"{r['mesh_quality_min']:.3f}"),
     ("remeshes", lambda r: f"{r['remeshes']}"),
+    ("step cuts", lambda r: f"{r['step_cuts']}"),
     ("its/step", lambda r: f"{r['coupling_iterations_mean']:.2f}"),
     ("unconverged", lambda r: f"{r['coupling_unconverged_steps']}"),
     ("wall [s]", lambda r: f"{r['wall_s']:.0f}")], rows)
 
-if "--check" in sys.argv:
+if "--check" in sys.argv or "--cuts" in sys.argv:
     # The same window of each run: the cycles that start after 50 ms and
     # end by 0.1 s
     check_rows = []
-    for label in ["p800"] + [c[0] for c in check]:
+    labels = [c[0] for c in cuts] if "--cuts" in sys.argv else ["p800"] + [c[0] for c in check]
+    for label in labels:
+        if not os.path.exists(os.path.join(out, f"run_glottis_elastic_fe_{label}", "summary.json")):
+            continue  # failed or not run
         cyc = [c for c in glottal_cycles(os.path.join(out, f"run_glottis_elastic_fe_{label}",
                                                       "series.csv"), None, 0.05)
                if c["t0_s"] + 1 / c["f0_hz"] <= 0.1]
@@ -121,11 +153,15 @@ if "--check" in sys.argv:
                            "f0_hz": len(cyc) / sum(1 / c["f0_hz"] for c in cyc),
                            "q_peak_ls": float(np.mean([c["q_peak_ls"] for c in cyc])),
                            "open_quotient": float(np.mean([c["open_quotient"] for c in cyc]))})
-    base = check_rows[0] if check_rows and check_rows[0]["case"] == "p800" else None
+    base = check_rows[0] if check_rows and check_rows[0]["case"] == labels[0] else None
+    by_case = {r["case"]: r for r in check_rows}
     for r in check_rows:
-        r["f0_change"] = r["f0_hz"] / base["f0_hz"] - 1 if base else float("nan")
-        r["q_peak_change"] = r["q_peak_ls"] / base["q_peak_ls"] - 1 if base else float("nan")
-    write_rows(os.path.join(out, "glottis_elastic_fe_check.csv"), check_rows)
+        # --cuts: each Δt 1e-5 run against its Δt 2e-5 partner
+        b = by_case.get(partners.get(r["case"], r["case"])) if "--cuts" in sys.argv else base
+        r["f0_change"] = r["f0_hz"] / b["f0_hz"] - 1 if b else float("nan")
+        r["q_peak_change"] = r["q_peak_ls"] / b["q_peak_ls"] - 1 if b else float("nan")
+    write_rows(os.path.join(out, "glottis_elastic_fe_cuts_check.csv" if "--cuts" in sys.argv
+                            else "glottis_elastic_fe_check.csv"), check_rows)
     print_markdown_table([
         ("case", lambda r: r["case"]),
         ("cycles in 50-100 ms", lambda r: f"{r['cycles']}"),

@@ -12,7 +12,10 @@
 # (fold_surface.csv, cut back to the checkpoint like series.csv). The
 # remeshed case meshes the channel again after every step (E13a; a wider
 # rest gap keeps the glottis open enough for it): the restart meshes the
-# checkpoint's boundary again and continues on it.
+# checkpoint's boundary again and continues on it. The cut case fails
+# every first attempt (a coupling tolerance out of reach in 3 iterations)
+# and takes each step as two halves (E13b): one row per step, each step
+# cut once, and its restart byte for byte too.
 # usage: restart_glottis_elastic.sh FSAI_GLOTTIS MPIEXEC
 demo=$1
 mpiexec=${2:-mpirun}
@@ -22,6 +25,7 @@ source "$(dirname "$0")/common.sh"
 cases=(
   "bernoulli|500|250|--flow bernoulli --fold elastic --elastic.layers 2 --duration 0.01 --checkpoint-every 100 --write_every 30 --surface_every 10"
   "fe|80|50|--flow fe --fold elastic --duration 0.0016 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --coupling.method iqn-ils --checkpoint-every 20 --write_every 15"
+  "fe_cuts|10|7|--flow fe --fold elastic --duration 0.0002 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --coupling.method iqn-ils --coupling.tol 1e-12 --coupling.max_iterations 3 --coupling.on_failure warn --fe.step_cuts 1 --checkpoint-every 5 --write_every 4"
   "fe_remesh|10|7|--flow fe --fold elastic --duration 0.0002 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --glottis.rest_gap 0.3e-3 --fe.remesh_quality 0.99 --checkpoint-every 5 --write_every 3"
 )
 for case in "${cases[@]}"; do
@@ -52,6 +56,16 @@ for case in "${cases[@]}"; do
     fi
   done
 done
+
+# Every step of the cut case taken as two halves, one row each
+# (the summary's result, after the parameter fe.step_cuts)
+cuts=$(grep -o '"step_cuts": *[0-9]*' "$work/full_fe_cuts/summary.json" | tail -1 | grep -o '[0-9]*$')
+rows=$(($(wc -l <"$work/full_fe_cuts/coupling.csv") - 1))
+if [ "$cuts" = 10 ] && [ "$rows" = 10 ]; then
+  echo "ok   fe_cuts: 10 steps cut once each, 10 coupling rows"
+else
+  echo "FAIL fe_cuts: step_cuts '$cuts', coupling rows $rows (10 and 10 expected)"; fail=1
+fi
 
 # The FE scene's 2-rank checkpoint (fields by mesh node / edge, not by
 # rank) continued on 1 rank

@@ -178,7 +178,7 @@ TEST_CASE("ALE: affine boundary motion is extended exactly, without drift, "
       set_interface(*mo, X, [&](double x, double y) { return d(x, y, t); });
       const auto q = mo->move(t);
       CHECK(q.min_scaled_jacobian > 0.3);
-      mo->velocity(w, dt);
+      mo->velocity(w, dt, dt);
       auto dd = mo->displacement()->x()->array();
       auto ww = w.x()->array();
       for (std::size_t i = 0; i < X.size() / 3; ++i)

@@ -1,6 +1,7 @@
 // Copyright (C) 2026 fsai developers
 #include "MeshMotion.h"
 #include "../common/Parameters.h"
+#include "../common/bdf.h"
 #include "../common/errors.h"
 #include "../common/petsc_solver.h"
 #include "../common/timer.h"
@@ -374,17 +375,16 @@ fsai::ale::MeshQuality fsai::ale::MeshMotion::place_and_check(double t)
   return q;
 }
 //-----------------------------------------------------------------------------
-void fsai::ale::MeshMotion::velocity(fem::Function<double>& w, double dt) const
+void fsai::ale::MeshMotion::velocity(fem::Function<double>& w, double dt,
+                                     double dt_n) const
 {
   auto d = _d->x()->array();
   auto out = w.x()->mutable_array();
   if (out.size() != d.size())
     throw std::runtime_error("ALE: mesh velocity must be in the P1 space");
+  const auto c = common::bdf2_weights(dt, dt_n, _history < 2);
   for (std::size_t i = 0; i < d.size(); ++i)
-  {
-    out[i] = _history < 2 ? (d[i] - _d_n[i]) / dt
-                          : (3 * d[i] - 4 * _d_n[i] + _d_nn[i]) / (2 * dt);
-  }
+    out[i] = c.w0 * d[i] + c.w1 * _d_n[i] + c.w2 * _d_nn[i];
 }
 //-----------------------------------------------------------------------------
 void fsai::ale::MeshMotion::advance()

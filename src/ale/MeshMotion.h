@@ -129,9 +129,11 @@ public:
   /// and check its quality as move() does
   MeshQuality move_to(std::span<const double> d, double t);
 
-  /// Mesh velocity of the current d for the step of length dt (BDF2, or
-  /// BDF1 for the first step after construction or reset)
-  void velocity(dolfinx::fem::Function<double>& w, double dt) const;
+  /// Mesh velocity of the current d for the step of length dt after one of
+  /// length dt_n (variable-step BDF2, the flow's weights; BDF1 for the
+  /// first step after construction or reset)
+  void velocity(dolfinx::fem::Function<double>& w, double dt,
+                double dt_n) const;
 
   /// Accept the step: d becomes the history for the next velocity()
   void advance();

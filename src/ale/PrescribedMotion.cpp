@@ -1,5 +1,6 @@
 // Copyright (C) 2026 fsai developers
 #include "PrescribedMotion.h"
+#include "../common/bdf.h"
 
 //-----------------------------------------------------------------------------
 fsai::ale::PrescribedMotion::PrescribedMotion(
@@ -26,20 +27,19 @@ void fsai::ale::PrescribedMotion::move(double t)
 }
 //-----------------------------------------------------------------------------
 void fsai::ale::PrescribedMotion::velocity(dolfinx::fem::Function<double>& w,
-                                           double t, double dt, bool bdf1) const
+                                           double t, double dt, double dt_n,
+                                           bool bdf1) const
 {
+  const auto c = common::bdf2_weights(dt, dt_n, bdf1);
   auto a = w.x()->mutable_array();
   const int bs = w.function_space()->dofmap()->bs();
   for (std::size_t i = 0; i < _dofX.size() / 3; ++i)
   {
     const std::array<double, 3> X{_dofX[3 * i], _dofX[3 * i + 1],
                                   _dofX[3 * i + 2]};
-    const auto d1 = _d(X, t), d0 = _d(X, t - dt), dm = _d(X, t - 2 * dt);
+    const auto d1 = _d(X, t), d0 = _d(X, t - dt), dm = _d(X, t - dt - dt_n);
     for (int k = 0; k < bs; ++k)
-    {
-      a[bs * i + k] = bdf1 ? (d1[k] - d0[k]) / dt
-                           : (3 * d1[k] - 4 * d0[k] + dm[k]) / (2 * dt);
-    }
+      a[bs * i + k] = c.w0 * d1[k] + c.w1 * d0[k] + c.w2 * dm[k];
   }
 }
 //-----------------------------------------------------------------------------

@@ -32,9 +32,10 @@ public:
 
   /// Move the mesh nodes to X + d(X, t)
   void move(double t);
-  /// Mesh velocity at time t from the positions at t, t − Δt, t − 2Δt
+  /// Mesh velocity at time t from the positions at t, t − Δt and
+  /// t − Δt − Δt_n (variable-step BDF2, E19; BDF1 from t and t − Δt)
   void velocity(dolfinx::fem::Function<double>& w, double t, double dt,
-                bool bdf1) const;
+                double dt_n, bool bdf1) const;
 
 private:
   std::shared_ptr<dolfinx::mesh::Mesh> _mesh;

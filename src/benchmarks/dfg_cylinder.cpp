@@ -178,7 +178,7 @@ void fsai::benchmarks::dfg_cylinder::run(MPI_Comm comm, const DfgCylinder& s,
         {
           const double t = k * cp.dt;
           motion.move(t);
-          motion.velocity(flow.mesh_velocity(), t, cp.dt, k == 1);
+          motion.velocity(flow.mesh_velocity(), t, cp.dt, cp.dt, k == 1);
           flow.step();
           auto [cdt, clt, dpt] = coefficients();
           if (amplitude > 0)

@@ -55,7 +55,7 @@ fsai::coupling::FixedPointCoupling::~FixedPointCoupling() = default;
 //-----------------------------------------------------------------------------
 fsai::coupling::StepReport
 fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
-                                         const Map& H)
+                                         const Map& H, StepOptions options)
 {
   _acc->new_step();
   StepReport rep;
@@ -112,6 +112,10 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
     x.swap(next);
   }
   const bool explicit_scheme = _par.max_iterations == 1;
+  if (relaxed)
+    rep.omega = _acc->last_omega();
+  if (!rep.converged and !explicit_scheme and options.may_retry)
+    return rep;
   const int k_last = rep.iterations;
   const double last_residual = rep.residual;
   if (!rep.converged and !explicit_scheme and k_best < k_last)
@@ -122,13 +126,8 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
     x = x_best;
     evaluate(k_last + 1);
   }
-  if (_csv)
-  {
-    _csv->row({t, double(rep.iterations), rep.residual, rep.first_residual,
-               rep.residual_abs, rep.converged ? 1.0 : 0.0,
-               relaxed ? _acc->last_omega()
-                       : std::numeric_limits<double>::quiet_NaN()});
-  }
+  if (options.record)
+    record(t, rep);
   if (!rep.converged and !explicit_scheme)
   {
     const std::string msg = fmt::format(
@@ -147,4 +146,13 @@ fsai::coupling::FixedPointCoupling::step(double t, std::vector<double>& x,
     fsai::log::warn("{}", msg);
   }
   return rep;
+}
+//-----------------------------------------------------------------------------
+void fsai::coupling::FixedPointCoupling::record(double t, const StepReport& rep)
+{
+  if (_csv)
+  {
+    _csv->row({t, double(rep.iterations), rep.residual, rep.first_residual,
+               rep.residual_abs, rep.converged ? 1.0 : 0.0, rep.omega});
+  }
 }

@@ -14,6 +14,7 @@
 
 #include "Accelerator.h"
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -55,6 +56,19 @@ struct StepReport
   double residual_abs = 0;       ///< |H(x) − x| of the kept iterate
   double first_residual_abs = 0; ///< |H(x) − x| of the first iteration
   bool converged = false;
+  /// The accelerator's last relaxation factor (NaN: it did not act)
+  double omega = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// How step() ends
+struct StepOptions
+{
+  /// Write the step's row to the CSV log (false: the caller records it,
+  /// e.g. one row for a step it took in parts)
+  bool record = true;
+  /// The caller takes an unconverged step again (shorter): such a step
+  /// returns with converged = false, without a warning, an error or a row
+  bool may_retry = false;
 };
 
 class FixedPointCoupling
@@ -75,7 +89,10 @@ public:
   /// Iterate one time step from the predictor x (on return: the last
   /// iterate, whose H the sub-solvers hold; for a step that does not
   /// converge, the iterate with the smallest residual, evaluated once more)
-  StepReport step(double t, std::vector<double>& x, const Map& H);
+  StepReport step(double t, std::vector<double>& x, const Map& H,
+                  StepOptions options = {});
+  /// The CSV row of a step at time t
+  void record(double t, const StepReport& rep);
 
   /// The accelerator's history from past steps (IQN-ILS reuse) into / from
   /// a checkpoint

@@ -71,7 +71,7 @@ void fsai::coupling::PartitionedFsi::evaluate(double t,
         a[bs * _owned[i] + k] = x[bs * i + k];
   }
   _motion.move(t);
-  _motion.velocity(_flow.mesh_velocity(), _flow.dt());
+  _motion.velocity(_flow.mesh_velocity(), _flow.dt(), _flow.dt_previous());
   // 2. flow, the interface moving with the mesh
   {
     auto w = _flow.mesh_velocity().x()->array();

@@ -2,6 +2,7 @@
 #include "FluidSolver.h"
 #include "../common/Parameters.h"
 #include "../common/Runtime.h"
+#include "../common/bdf.h"
 #include "../common/errors.h"
 #include "../common/petsc_solver.h"
 #include "../common/timer.h"
@@ -84,7 +85,7 @@ void fsai::fluid::FluidParameters::validate() const
 fsai::fluid::FluidSolver::FluidSolver(std::shared_ptr<const mesh::Mesh> mesh,
                                       const FluidBoundaries& bnd,
                                       const FluidParameters& p, double dt)
-    : _par(p), _dt(dt), _A(nullptr, false), _solver(mesh->comm())
+    : _par(p), _dt(dt), _dt_n(dt), _A(nullptr, false), _solver(mesh->comm())
 {
   common::ScopedTimer timer("fluid: setup");
   p.validate();
@@ -433,18 +434,19 @@ int fsai::fluid::FluidSolver::step()
 {
   common::ScopedTimer timer("fluid: step");
   const double dt = _dt;
-  // E19: BDF1 for the first step, then BDF2
-  if (_steps == 0)
-    _a0->value[0] = 1 / dt, _a1->value[0] = -1 / dt, _a2->value[0] = 0;
-  else
-    _a0->value[0] = 1.5 / dt, _a1->value[0] = -2 / dt, _a2->value[0] = 0.5 / dt;
+  // E19: BDF1 for the first step, then BDF2 (variable step: weights by
+  // the ratio r = Δt/Δt_n)
+  const auto w = common::bdf2_weights(dt, _dt_n, _steps == 0);
+  _a0->value[0] = w.w0, _a1->value[0] = w.w1, _a2->value[0] = w.w2;
   _inv_dt->value[0] = _par.tau_dt ? 1 / dt : 0.0;
-  // Oseen: convecting velocity extrapolated, 2 v_n − v_nn (v_n at start)
+  // Oseen: convecting velocity extrapolated to t_{n+1} (E20),
+  // v_n + r (v_n − v_nn) (v_n at start)
   {
+    const double r = _steps == 0 ? 0.0 : dt / _dt_n;
     auto vs = _v_star->x()->mutable_array();
     auto vn = _v_n->x()->array(), vnn = _v_nn->x()->array();
     for (std::size_t i = 0; i < vs.size(); ++i)
-      vs[i] = _steps == 0 ? vn[i] : 2 * vn[i] - vnn[i];
+      vs[i] = (1 + r) * vn[i] - r * vnn[i];
   }
   _t += dt;
   int solves = 0;
@@ -472,7 +474,14 @@ int fsai::fluid::FluidSolver::step()
   std::copy(_v->x()->array().begin(), _v->x()->array().end(),
             _v_n->x()->mutable_array().begin());
   ++_steps;
+  _dt_n = dt;
   return solves;
+}
+//-----------------------------------------------------------------------------
+void fsai::fluid::FluidSolver::set_dt(double dt)
+{
+  fsai::require_positive("fluid: time step", dt);
+  _dt = dt;
 }
 //-----------------------------------------------------------------------------
 int fsai::fluid::FluidSolver::solve_steady(int max_iterations)
@@ -635,7 +644,8 @@ void fsai::fluid::FluidSolver::save_state()
   auto copy = [](auto& f) {
     return std::vector<double>(f->x()->array().begin(), f->x()->array().end());
   };
-  _saved = {copy(_up), copy(_v), copy(_p), copy(_v_n), copy(_v_nn), _t, _steps};
+  _saved = {copy(_up),   copy(_v), copy(_p), copy(_v_n),
+            copy(_v_nn), _t,       _dt_n,    _steps};
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidSolver::restore_state()
@@ -650,6 +660,7 @@ void fsai::fluid::FluidSolver::restore_state()
   back(_saved.v_n, _v_n);
   back(_saved.v_nn, _v_nn);
   _t = _saved.t;
+  _dt_n = _saved.dt_n;
   _steps = _saved.steps;
 }
 //-----------------------------------------------------------------------------
@@ -669,7 +680,7 @@ void fsai::fluid::FluidSolver::save(io::RankState& state,
        {std::pair{"v", _v}, {"v_n", _v_n}, {"v_nn", _v_nn}})
     io::put_blocks(state, prefix + name, f->x()->array(), bs, kv, nv);
   io::put_blocks(state, prefix + "p", _p->x()->array(), 1, kp, np);
-  state[prefix + "t_steps"] = {_t, double(_steps)};
+  state[prefix + "t_steps"] = {_t, double(_steps), _dt_n};
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidSolver::load(const std::vector<io::RankState>& ranks,
@@ -682,9 +693,14 @@ void fsai::fluid::FluidSolver::load(const std::vector<io::RankState>& ranks,
     io::get_blocks(ranks, prefix + name, f->x()->mutable_array(), bs, kv);
   io::get_blocks(ranks, prefix + "p", _p->x()->mutable_array(), 1, kp);
   merge();
-  const auto& ts = io::state_entry(ranks.at(0), prefix + "t_steps", 2);
+  const auto& ts = io::state_entry(ranks.at(0), prefix + "t_steps");
+  if (ts.size() < 2)
+    throw fsai::InputError("restart: the checkpoint's " + prefix
+                           + "t_steps is short");
   _t = ts[0];
   _steps = int(ts[1]);
+  // Checkpoints of uniform-step runs before the variable step have no Δt_n
+  _dt_n = ts.size() > 2 ? ts[2] : _dt;
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidSolver::merge()
@@ -700,7 +716,7 @@ void fsai::fluid::FluidSolver::merge()
 void fsai::fluid::FluidSolver::set_state(std::span<const double> v_n,
                                          std::span<const double> v_nn,
                                          std::span<const double> p, double t,
-                                         int steps)
+                                         int steps, double dt_n)
 {
   auto put = [](std::span<const double> a, auto& f)
   {
@@ -716,6 +732,7 @@ void fsai::fluid::FluidSolver::set_state(std::span<const double> v_n,
   merge();
   _t = t;
   _steps = steps;
+  _dt_n = dt_n;
   save_state();
 }
 //-----------------------------------------------------------------------------

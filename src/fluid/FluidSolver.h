@@ -166,11 +166,11 @@ public:
   void load(const std::vector<io::RankState>& ranks, const std::string& prefix);
   /// The accepted step's state from elsewhere (a flow transferred from
   /// another mesh): v^n (also the current velocity), v^{n−1}, p^n (local
-  /// arrays of the velocity and pressure spaces, ghosts included), the time
-  /// and the steps taken (≥ 1: the next step is BDF2); saved as the start
-  /// of the next step
+  /// arrays of the velocity and pressure spaces, ghosts included), the time,
+  /// the steps taken (≥ 1: the next step is BDF2) and the last step's
+  /// length; saved as the start of the next step
   void set_state(std::span<const double> v_n, std::span<const double> v_nn,
-                 std::span<const double> p, double t, int steps);
+                 std::span<const double> p, double t, int steps, double dt_n);
   /// v^{n−1} of the BDF history
   std::shared_ptr<const dolfinx::fem::Function<double>> velocity_nn() const
   {
@@ -195,6 +195,11 @@ public:
   double time() const { return _t; }
   void set_time(double t) { _t = t; }
   double dt() const { return _dt; }
+  /// Length of the next steps (a variable step: the BDF2 weights and the
+  /// convection's extrapolation follow the ratio to the last step, E19)
+  void set_dt(double dt);
+  /// Length of the last step taken (t_n − t_{n−1})
+  double dt_previous() const { return _dt_n; }
   /// Steps taken (0: the next is a BDF1 start)
   int steps() const { return _steps; }
   std::int64_t dofs() const;
@@ -222,12 +227,12 @@ private:
   struct State
   {
     std::vector<double> up, v, p, v_n, v_nn;
-    double t = 0;
+    double t = 0, dt_n = 0;
     int steps = 0;
   } _saved;
 
   FluidParameters _par;
-  double _dt, _t = 0.0;
+  double _dt, _dt_n, _t = 0.0;
   int _steps = 0;
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _W, _V, _Q, _DG0;
   std::vector<std::int32_t> _map_v, _map_p; // collapsed → mixed dofs

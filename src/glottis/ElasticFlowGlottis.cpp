@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <io/RunSummary.h>
 #include <io/TimeSeriesWriter.h>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <tuple>
@@ -222,9 +223,13 @@ std::vector<double> fsai::glottis::ElasticFlowGlottis::predict()
 {
   if (_par.predictor == "displacement" or _steps < 2)
     return _fold.surface_prediction();
+  // The pressures of the last two steps extrapolated to the end of this
+  // one (steps of any length: a cut step)
+  const auto& flow = _channel->flow();
+  const double r = flow.dt() / flow.dt_previous();
   std::vector<double> p(_p_n.size());
   for (std::size_t k = 0; k < p.size(); ++k)
-    p[k] = 2 * _p_n[k] - _p_nn[k];
+    p[k] = (1 + r) * _p_n[k] - r * _p_nn[k];
   // The trial step is repeated by the first evaluation (H restores the
   // fold's state first)
   _fold.restore_state();
@@ -235,39 +240,70 @@ std::vector<double> fsai::glottis::ElasticFlowGlottis::predict()
 //-----------------------------------------------------------------------------
 fsai::glottis::Sample fsai::glottis::ElasticFlowGlottis::step()
 {
-  Sample out;
-  try
-  {
-    out = attempt();
-  }
-  catch (const ale::MeshInvertedError& e)
-  {
-    // Every rank throws (the quality is a global minimum)
-    if (_par.remesh_quality <= 0 or _x_accepted.empty())
-      throw;
-    log::warn("{}: meshing again at the last step and repeating it", e.what());
-    _channel->rewind();
-    _fold.restore_state();
-    remesh();
-    out = attempt();
-  }
-  _min_quality = std::min(_min_quality, _quality);
+  coupling::StepReport total;
+  total.converged = true;
+  total.first_residual = std::numeric_limits<double>::quiet_NaN();
+  advance(_par.dt, 0, total);
+  _loop.record(_t, total);
   // Not while the glottis is nearly closed: a gap narrower than the mesh
   // size gets fewer nodes across from a new isotropic mesh than it had in
   // the compressed one (on the 0.1 mm mesh a remeshing at a 40 µm gap
   // changed the glottal flow by 23 %); the gap columns keep the
   // compressed cells valid until the glottis opens
+  Sample out = sample(total);
   if (_par.remesh_quality > 0 and _quality < _par.remesh_quality
       and out.gap > 2 * _par.sizes.h_gap)
     remesh();
   return out;
 }
 //-----------------------------------------------------------------------------
-fsai::glottis::Sample fsai::glottis::ElasticFlowGlottis::attempt()
+void fsai::glottis::ElasticFlowGlottis::advance(double dt, int cuts,
+                                                coupling::StepReport& total)
+{
+  // E13b: a failed attempt is discarded and the step taken as two halves;
+  // at the last level an inverted cell remeshes and the step is repeated
+  // (E13a), an unconverged step is accepted with a warning
+  const bool last = cuts >= _par.step_cuts;
+  bool accepted = false;
+  try
+  {
+    accepted = attempt(dt, !last, total);
+  }
+  catch (const ale::MeshInvertedError& e)
+  {
+    // Every rank throws (the quality is a global minimum)
+    if (last and (_par.remesh_quality <= 0 or _x_accepted.empty()))
+      throw;
+    _channel->rewind();
+    _fold.restore_state();
+    if (last)
+    {
+      log::warn("{}: meshing again at the last step and repeating it",
+                e.what());
+      remesh();
+      accepted = attempt(dt, false, total);
+    }
+    else
+      log::info("{}: the step of {:.3g} s taken as two halves", e.what(), dt);
+  }
+  if (!accepted)
+  {
+    ++_step_cuts;
+    advance(dt / 2, cuts + 1, total);
+    advance(dt / 2, cuts + 1, total);
+    return;
+  }
+  _min_quality = std::min(_min_quality, _quality);
+}
+//-----------------------------------------------------------------------------
+bool fsai::glottis::ElasticFlowGlottis::attempt(double dt, bool may_retry,
+                                                coupling::StepReport& total)
 {
   common::ScopedTimer timer("glottis: elastic fe step");
-  const double t = _t + _par.dt;
+  const double t = _t + dt;
   auto& flow = _channel->flow();
+  flow.set_dt(dt);
+  _fold.set_dt(dt);
   flow.set_inlet_pressure(pressure_ramp(t, _par.ramp) * _par.p_sub);
   flow.save_state();
   _fold.save_state();
@@ -285,18 +321,43 @@ fsai::glottis::Sample fsai::glottis::ElasticFlowGlottis::attempt()
     std::copy(u.begin(), u.end(), Hx.begin());
   };
   std::vector<double> x = predict();
-  const auto rep = _loop.step(t, x, H);
+  const auto rep
+      = _loop.step(t, x, H, {.record = false, .may_retry = may_retry});
+  // The step's report: its evaluations of H, discarded attempts included
+  total.iterations += rep.iterations;
+  if (!rep.converged and may_retry and !_explicit)
+  {
+    log::info("coupling: not converged at t = {:.6g} s after {} iterations "
+              "(relative interface residual {:.3e}): the step of {:.3g} s "
+              "taken as two halves",
+              t, rep.iterations, rep.residual, dt);
+    _channel->rewind();
+    _fold.restore_state();
+    return false;
+  }
+  if (std::isnan(total.first_residual)) // the step's first accepted part
+    total.first_residual = rep.first_residual,
+    total.first_residual_abs = rep.first_residual_abs;
+  total.residual = std::max(total.residual, rep.residual);
+  total.residual_abs = std::max(total.residual_abs, rep.residual_abs);
+  total.converged = total.converged and rep.converged;
+  total.omega = rep.omega;
   _channel->advance();
   _x_accepted = _x_moved;
   _p_nn = std::move(_p_n);
   _p_n = _p;
   ++_steps;
   _t = t;
-
+  return true;
+}
+//-----------------------------------------------------------------------------
+fsai::glottis::Sample
+fsai::glottis::ElasticFlowGlottis::sample(const coupling::StepReport& rep)
+{
   // The flow holds the step at the mesh of the last iterate, the fold
   // H(last iterate): report the fold's state and the flow's
   Sample out;
-  out.t = t;
+  out.t = _t;
   const auto xs = _fold.moved_surface(_fold.surface_displacement());
   out.gap = lowest_point(xs);
   const auto Q = _channel->flow_rates();
@@ -341,7 +402,7 @@ fsai::io::RankState fsai::glottis::ElasticFlowGlottis::save()
   p.insert(p.end(), _p_n.begin(), _p_n.end());
   p.insert(p.end(), _p_nn.begin(), _p_nn.end());
   state["glottis.p_history"] = p;
-  state["glottis.t_steps"] = {_t, double(_steps)};
+  state["glottis.t_steps"] = {_t, double(_steps), double(_step_cuts)};
   return state;
 }
 //-----------------------------------------------------------------------------
@@ -399,9 +460,13 @@ void fsai::glottis::ElasticFlowGlottis::load(
         _p_n.assign(p.begin() + 2, p.begin() + 2 + long(n1));
         _p_nn.assign(p.begin() + 2 + long(n1), p.end());
         _p = _p_n;
-        const auto& ts = io::state_entry(r0, "glottis.t_steps", 2);
+        const auto& ts = io::state_entry(r0, "glottis.t_steps");
+        if (ts.size() < 2)
+          throw InputError(
+              "restart: the checkpoint's glottis.t_steps is short");
         _t = ts[0];
         _steps = int(ts[1]);
+        _step_cuts = ts.size() > 2 ? int(ts[2]) : 0;
       });
 }
 //-----------------------------------------------------------------------------
@@ -498,4 +563,5 @@ void fsai::glottis::ElasticFlowGlottis::report(io::RunSummary& summary) const
 {
   summary.set("remeshes", _remesh.count);
   summary.set("mesh_quality_min", _min_quality);
+  summary.set("step_cuts", _step_cuts);
 }

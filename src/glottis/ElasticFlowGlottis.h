@@ -46,6 +46,13 @@
 // new fluid boundary nodes take the arc length of their nearest point on
 // the old boundary, and from then on move by the fold's displacement
 // since the remeshing (u − u_r, and the lift's change).
+//
+// Step cuts (--fe.step_cuts n > 0, docs/model.md E13b): an attempt whose
+// coupling does not converge, or whose move inverts a cell, is discarded
+// and the step taken as two halves (each of which may be cut again, n
+// levels); the flow's BDF2 and mesh velocity follow the variable grid
+// (E19). Only the last level remeshes at an inverted cell or accepts an
+// unconverged step. The caller sees one step of Δt.
 #pragma once
 #include "ElasticFold.h"
 #include "FlowChannel.h"
@@ -162,8 +169,17 @@ private:
   std::vector<double> _p, _p_n, _p_nn;
   /// The first guess of the step's surface displacement
   std::vector<double> predict();
-  /// One coupled time step on the current mesh
-  Sample attempt();
+  /// The accepted state advanced by dt, cut into halves where an attempt
+  /// fails (`cuts` levels so far, E13b); its coupling reports summed into
+  /// `total`
+  void advance(double dt, int cuts, coupling::StepReport& total);
+  /// One coupled step of length dt on the current mesh, its coupling
+  /// report added to `total`; false: the coupling did not converge and
+  /// `may_retry` (the state is back at the step's start)
+  bool attempt(double dt, bool may_retry, coupling::StepReport& total);
+  /// The sample of the accepted state (the step's coupling report `rep`)
+  Sample sample(const coupling::StepReport& rep);
+  int _step_cuts = 0; ///< attempts taken again as two halves
   /// The moved fold surface of the last move and of the accepted step
   std::vector<std::array<double, 2>> _x_moved, _x_accepted;
   int _steps = 0;

@@ -175,6 +175,8 @@ public:
   }
   void save_state() { _solver->save_state(); }
   void restore_state() { _solver->restore_state(); }
+  /// Length of the next steps (a cut step, ElasticFlowGlottis)
+  void set_dt(double dt) { _solver->set_dt(dt); }
   /// One Newmark step under the set pressure (and contact); Newton its
   int step() { return _solver->step(); }
 

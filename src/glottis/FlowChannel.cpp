@@ -44,10 +44,13 @@ fsai::glottis::FlowChannel::FlowChannel(
     MPI_Comm comm, const FoldProfile& profile, const FlowGlottisParameters& p,
     fluid::FluidParameters fp, const ale::MeshMotionParameters& ap,
     const std::vector<std::array<double, 2>>& curve)
-    : _comm(comm), _profile(profile), _dt(p.dt), _porous_ramp(p.porous_ramp),
-      _chi_floor(fp.sigma_p > 0
-                     ? std::min(1.0, 0.01 * fp.rho / (fp.sigma_p * p.dt))
-                     : 1.0)
+    : _comm(comm), _profile(profile), _porous_ramp(p.porous_ramp),
+      _chi_floor(
+          fp.sigma_p > 0 ? std::min(
+              1.0, 0.01 * fp.rho
+                       / (fp.sigma_p
+                          * (p.porous_floor_dt > 0 ? p.porous_floor_dt : p.dt)))
+                         : 1.0)
 {
   p.validate();
   const auto& g = profile.geometry();
@@ -218,7 +221,7 @@ void fsai::glottis::FlowChannel::set_interface(const SurfaceDisplacement& u)
 //-----------------------------------------------------------------------------
 void fsai::glottis::FlowChannel::set_wall_velocity()
 {
-  _motion->velocity(_flow->mesh_velocity(), _dt);
+  _motion->velocity(_flow->mesh_velocity(), _flow->dt(), _flow->dt_previous());
   auto w = _flow->mesh_velocity().x()->array();
   auto gw = _flow->wall_velocity().x()->mutable_array();
   for (auto d : _fold_dofs)
@@ -357,7 +360,8 @@ fsai::glottis::FlowChannel::transfer_from(FlowChannel& old)
   std::vector<double> p(XQ.size() / 3);
   for (std::size_t i = 0; i < p.size(); ++i)
     p[i] = fp({XQ[3 * i], XQ[3 * i + 1]})[0];
-  _flow->set_state(v, vnn, p, of.time(), std::max(of.steps(), 1));
+  _flow->set_state(v, vnn, p, of.time(), std::max(of.steps(), 1),
+                   of.dt_previous());
   _motion->continue_from(dnn);
   // The mesh velocity and the fold wall's velocity of the accepted step
   // (the flow rates through moving fold walls use them)

@@ -88,7 +88,8 @@ public:
   /// polygon `outline` (to_outline maps a current point to its
   /// coordinates). δ = --closure.porous_ramp = 0: χ = 1 inside, 0 outside;
   /// δ > 0: by the depth d inside it, s = 1/2 + d/δ clamped to [0, 1],
-  /// χ = χ_0^(1 − s) for s > 0 and 0 for s = 0, χ_0 = 0.01 ρ/(σ_P Δt).
+  /// χ = χ_0^(1 − s) for s > 0 and 0 for s = 0, χ_0 = 0.01 ρ/(σ_P Δt_χ),
+  /// Δt_χ = --closure.porous_floor_dt or the run's Δt.
   /// χ = 0 in the other cells
   void mark_porous(const std::vector<std::array<double, 2>>& outline,
                    const ToOutline& to_outline);
@@ -146,7 +147,6 @@ public:
 private:
   MPI_Comm _comm;
   const FoldProfile& _profile;
-  double _dt;
   double _porous_ramp; // δ of mark_porous [m]
   double _chi_floor;   // χ_0 of mark_porous
   mesh::MeshData _mesh;

@@ -46,6 +46,9 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
   p.add("closure.porous_ramp", porous_ramp,
         "width over which a cell's porous indicator rises from 0 to 1 with "
         "the depth of its midpoint inside the fold (0: a switch) [m]");
+  p.add("closure.porous_floor_dt", porous_floor_dt,
+        "porous ramp: the Δt of its floor 0.01 rho/(sigma_p dt) (0: the "
+        "run's --dt) [s]");
   p.add_choice("closure.gap_motion", gap_motion, {"algebraic", "elastic"},
                "mesh motion between the medial surface and the axis");
   p.add("closure.gap_columns", gap_columns,
@@ -54,6 +57,9 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
   p.add("fe.remesh_quality", remesh_quality,
         "elastic fold: mesh the channel again when a cell's scaled Jacobian "
         "falls below this (0: never)");
+  p.add("fe.step_cuts", step_cuts,
+        "elastic fold: a failed step (coupling not converged, a cell "
+        "inverted) is taken as two halves, up to this many times in a row");
   p.add_choice("closure.lift", lift, {"uniform", "local"},
                "elastic fold: the fluid boundary lifted above g_min as a whole "
                "(uniform) or around the points below 2 g_min (local)");
@@ -84,11 +90,15 @@ void fsai::glottis::FlowGlottisParameters::validate() const
   fsai::require(sizes.h_inlet >= 0, "--fe.h_inlet", ">= 0", sizes.h_inlet);
   fsai::require_positive("--closure.g_min", g_min);
   fsai::require(porous_ramp >= 0, "--closure.porous_ramp", ">= 0", porous_ramp);
+  fsai::require(porous_floor_dt >= 0, "--closure.porous_floor_dt", ">= 0",
+                porous_floor_dt);
   fsai::require(gap_columns >= 0, "--closure.gap_columns", ">= 0", gap_columns);
   fsai::require(wedge_angle >= 0 and wedge_angle < 90, "--closure.wedge_angle",
                 "in [0, 90)", wedge_angle);
   fsai::require(remesh_quality >= 0 and remesh_quality < 1,
                 "--fe.remesh_quality", "in [0, 1)", remesh_quality);
+  fsai::require(step_cuts >= 0 and step_cuts <= 8, "--fe.step_cuts",
+                "in [0, 8]", step_cuts);
 }
 
 fsai::glottis::FlowGlottisSetup::FlowGlottisSetup()

@@ -58,6 +58,10 @@ struct FlowGlottisParameters
   /// with the depth of its midpoint inside the moved fold (G4; 0: χ
   /// switches from 0 to 1 as the midpoint enters the fold) [m]
   double porous_ramp = 0.0;
+  /// The step Δt_χ of the ramp's floor χ_0 = 0.01 ρ/(σ_P Δt_χ) (G4) [s];
+  /// 0: the run's Δt (the porous model then changes with Δt; a Δt study
+  /// holds it fixed with this)
+  double porous_floor_dt = 0.0;
   /// Mesh motion of the gap between the medial surface and the axis:
   /// "algebraic" (each node keeps its height fraction y/y_s under the
   /// surface point above it; the rest of the mesh by the elastic
@@ -92,6 +96,12 @@ struct FlowGlottisParameters
   /// cell), the channel is meshed again on the fold surface as it is and
   /// the flow state moved onto the new mesh (docs/model.md E13a); 0: never
   double remesh_quality = 0.0;
+  /// Elastic fold: a step whose coupling does not converge, or whose move
+  /// inverts a fluid cell, is discarded and taken as two of half the
+  /// length, at most this many times in a row (Δt/2^n; docs/model.md
+  /// E13b); 0: never (an inverted cell remeshes, an unconverged step is
+  /// accepted with a warning, as at the last level)
+  int step_cuts = 0;
   /// Elastic fold: how the fluid boundary is kept above g_min (G3).
   /// "uniform": the whole surface lifted by boundary_lift of its lowest
   /// point (tapered to the wall); "local": each surface point's own

@@ -161,6 +161,9 @@ std::unique_ptr<fsai::glottis::GlottisModel> fsai::glottis::make_glottis(
     fsai::require(setup.fe.remesh_quality == 0, "--fe.remesh_quality",
                   "0 with the 2-DOF fold (remeshing is for --fold elastic)",
                   setup.fe.remesh_quality);
+    fsai::require(setup.fe.step_cuts == 0, "--fe.step_cuts",
+                  "0 with the 2-DOF fold (step cuts are for --fold elastic)",
+                  setup.fe.step_cuts);
     fsai::require(setup.fe.lift == "uniform", "--closure.lift",
                   "uniform with the 2-DOF fold (local is for --fold elastic)",
                   setup.fe.lift);

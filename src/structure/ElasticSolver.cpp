@@ -7,6 +7,7 @@
 #include "../common/timer.h"
 #include "../io/field_state.h"
 #include <cmath>
+#include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/fem/utils.h>
@@ -158,6 +159,7 @@ fsai::structure::ElasticSolver::ElasticSolver(
     _constants.push_back(std::make_shared<fem::Constant<double>>(value));
     return _constants.back();
   };
+  _dt_c = constant(dt);
   _dynamic = constant(1.0);
   _load = constant(1.0);
   _k_c = constant(0.0);
@@ -166,7 +168,7 @@ fsai::structure::ElasticSolver::ElasticSolver(
   std::vector<double> g0(tdim, 0.0);
   _g = std::make_shared<fem::Constant<double>>(std::span<const double>(g0));
   std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
-      = {{"dt", constant(dt)},
+      = {{"dt", _dt_c},
          {"beta", constant(_scheme.beta)},
          {"gamma", constant(_scheme.gamma)},
          {"alpha_m", constant(_scheme.alpha_m)},
@@ -235,11 +237,18 @@ void fsai::structure::ElasticSolver::fix_where(
 {
   auto zero = std::make_shared<fem::Function<double>>(_V);
   zero->x()->set(0.0);
-  const std::vector<double> X = _V->tabulate_dof_coordinates(false);
-  std::vector<std::int32_t> d;
-  for (std::size_t i = 0; i < X.size() / 3; ++i)
-    if (where(std::span<const double, 3>(X.data() + 3 * i, 3)))
-      d.push_back(std::int32_t(i));
+  const auto d = fem::locate_dofs_geometrical(
+      *_V,
+      [&](const xt::xtensor<double, 2>& x) -> xt::xtensor<bool, 1>
+      {
+        xt::xtensor<bool, 1> on = xt::zeros<bool>({x.shape(1)});
+        for (std::size_t i = 0; i < x.shape(1); ++i)
+        {
+          const std::array<double, 3> p{x(0, i), x(1, i), x(2, i)};
+          on(i) = where(p);
+        }
+        return on;
+      });
   _bcs.push_back(std::make_shared<const fem::DirichletBC<double>>(zero, d));
   _J_current = false;
 }
@@ -429,9 +438,7 @@ int fsai::structure::ElasticSolver::step()
   _t += _dt;
   const int its = newton("dynamic step");
   _stepped = true;
-  _T_last.assign(_traction->x()->array().begin(),
-                 _traction->x()->array().end());
-  _T_last_t = _t;
+  remember_traction();
 
   // Newmark update (E18): a = (u − ũ)/(βΔt²), v = v_n + Δt((1−γ)a_n + γa)
   const double b = _scheme.beta, g = _scheme.gamma, dt = _dt;
@@ -445,6 +452,24 @@ int fsai::structure::ElasticSolver::step()
     v[i] = vn[i] + dt * ((1 - g) * an[i] + g * a[i]);
   }
   return its;
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::remember_traction()
+{
+  // The next step's T_n (E18a)
+  _T_last.assign(_traction->x()->array().begin(),
+                 _traction->x()->array().end());
+  _T_last_t = _t;
+}
+//-----------------------------------------------------------------------------
+void fsai::structure::ElasticSolver::set_dt(double dt)
+{
+  fsai::require_positive("solid: time step", dt);
+  if (dt == _dt)
+    return;
+  _dt = dt;
+  _dt_c->value[0] = dt;
+  _J_current = false; // the inertia term M/(βΔt²) changed
 }
 //-----------------------------------------------------------------------------
 int fsai::structure::ElasticSolver::solve_static(int load_steps)
@@ -462,9 +487,7 @@ int fsai::structure::ElasticSolver::solve_static(int load_steps)
   _dynamic->value[0] = 1.0;
   _load->value[0] = 1.0;
   _J_current = false;
-  _T_last.assign(_traction->x()->array().begin(),
-                 _traction->x()->array().end());
-  _T_last_t = _t;
+  remember_traction();
   return its;
 }
 //-----------------------------------------------------------------------------

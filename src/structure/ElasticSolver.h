@@ -176,6 +176,9 @@ public:
   }
   double time() const { return _t; }
   double dt() const { return _dt; }
+  /// Length of the next steps (Newmark and generalised-α are one-step
+  /// schemes: any step may differ from the last)
+  void set_dt(double dt);
 
   /// ½ vᵀ M v
   double kinetic_energy();
@@ -199,6 +202,8 @@ public:
 
 private:
   int newton(const std::string& what);
+  /// The traction the state now stands under, and its time (T_n, E18a)
+  void remember_traction();
 
   const SolidParameters _p;
   const TimeScheme _scheme;
@@ -211,8 +216,8 @@ private:
   // (restore_state) keeps its T_n
   std::vector<double> _T_last;
   double _T_last_t = -1.0;
-  std::shared_ptr<dolfinx::fem::Constant<double>> _dynamic, _load, _g, _k_c,
-      _b_c, _y_c;
+  std::shared_ptr<dolfinx::fem::Constant<double>> _dt_c, _dynamic, _load, _g,
+      _k_c, _b_c, _y_c;
   std::function<void(int)> _contact_update;
   std::vector<std::shared_ptr<dolfinx::fem::Constant<double>>> _constants;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
