@@ -61,14 +61,17 @@ for label, dt, floor in [("p800_cuts2_floor1e-5", "2e-5", "1e-5"),
                          ("p800_cuts2_dt1e-5_floor2e-5", "1e-5", "2e-5")]:
     cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt,
                             "--fe.step_cuts", "2", "--closure.porous_floor_dt", floor]))
-# Each run's Δt partner in the check table
-partners = {"p800_cuts2_dt1e-5": "p800_cuts2",
+cuts_mode = "--cuts" in sys.argv
+suffix = "_cuts" if cuts_mode else ""
+# Each run's reference in the check table: with --check the 0.2 s run at
+# 800 Pa, with --cuts its Δt partner (a run without one is its own)
+partners = {c[0]: "p800" for c in check} if not cuts_mode else {"p800_cuts2_dt1e-5": "p800_cuts2",
             "p800_alpha0.8_cuts2_dt1e-5": "p800_alpha0.8_cuts2",
             "p800_cuts2_floor1e-5": "p800_cuts2_dt1e-5",
             "p800_cuts2_dt1e-5_floor2e-5": "p800_cuts2"}
 if "--check" in sys.argv:
     cases += check
-if "--cuts" in sys.argv:
+if cuts_mode:
     cases = cuts
 
 if "--scheme" in sys.argv:
@@ -119,8 +122,7 @@ for label, ranks, extra in cases:
                  "coupling_iterations_mean": s["coupling_iterations_mean"],
                  "coupling_unconverged_steps": s["coupling_unconverged_steps"],
                  "flow_dofs": s["flow_dofs"], "wall_s": s["process_wall_s"]})
-write_rows(os.path.join(out, "glottis_elastic_fe_cuts.csv" if "--cuts" in sys.argv
-                        else "glottis_elastic_fe.csv"), rows)
+write_rows(os.path.join(out, f"glottis_elastic_fe{suffix}.csv"), rows)
 print_markdown_table([
     ("case", lambda r: r["case"]),
     ("f0 [Hz]", lambda r: f"{r['f0_hz']:.2f}"),
@@ -136,11 +138,11 @@ print_markdown_table([
     ("unconverged", lambda r: f"{r['coupling_unconverged_steps']}"),
     ("wall [s]", lambda r: f"{r['wall_s']:.0f}")], rows)
 
-if "--check" in sys.argv or "--cuts" in sys.argv:
+if "--check" in sys.argv or cuts_mode:
     # The same window of each run: the cycles that start after 50 ms and
     # end by 0.1 s
     check_rows = []
-    labels = [c[0] for c in cuts] if "--cuts" in sys.argv else ["p800"] + [c[0] for c in check]
+    labels = [c[0] for c in cuts] if cuts_mode else ["p800"] + [c[0] for c in check]
     for label in labels:
         if not os.path.exists(os.path.join(out, f"run_glottis_elastic_fe_{label}", "summary.json")):
             continue  # failed or not run
@@ -153,15 +155,12 @@ if "--check" in sys.argv or "--cuts" in sys.argv:
                            "f0_hz": len(cyc) / sum(1 / c["f0_hz"] for c in cyc),
                            "q_peak_ls": float(np.mean([c["q_peak_ls"] for c in cyc])),
                            "open_quotient": float(np.mean([c["open_quotient"] for c in cyc]))})
-    base = check_rows[0] if check_rows and check_rows[0]["case"] == labels[0] else None
     by_case = {r["case"]: r for r in check_rows}
     for r in check_rows:
-        # --cuts: each Δt 1e-5 run against its Δt 2e-5 partner
-        b = by_case.get(partners.get(r["case"], r["case"])) if "--cuts" in sys.argv else base
+        b = by_case.get(partners.get(r["case"], r["case"]))
         r["f0_change"] = r["f0_hz"] / b["f0_hz"] - 1 if b else float("nan")
         r["q_peak_change"] = r["q_peak_ls"] / b["q_peak_ls"] - 1 if b else float("nan")
-    write_rows(os.path.join(out, "glottis_elastic_fe_cuts_check.csv" if "--cuts" in sys.argv
-                            else "glottis_elastic_fe_check.csv"), check_rows)
+    write_rows(os.path.join(out, f"glottis_elastic_fe{suffix}_check.csv"), check_rows)
     print_markdown_table([
         ("case", lambda r: r["case"]),
         ("cycles in 50-100 ms", lambda r: f"{r['cycles']}"),
