@@ -1,28 +1,31 @@
 #!/usr/bin/python3
 """The elastic fold in the FE flow through closure: the preset
-demos/glottis/elastic_fe.toml (clamped ends, porous ramp, Newmark γ 0.6,
-local lift, remeshing, attachment wedges, IQN-ILS) for 0.2 s from rest at
-p_sub 400, 800 and 1200 Pa; with --check, the 800 Pa run for 0.1 s on the
-finer mesh (h_gap 0.035 mm) and at Δt 1e-5, serially, and with the
-generalised-α fold step (ρ∞ 0.8) on 2 ranks, its cycles from 50 ms to
-0.1 s compared with the default's over the same window.
+demos/glottis/elastic_fe.toml (clamped ends, porous ramp, generalised-α
+fold step, step cuts, τ_m's step held, local lift, remeshing, attachment
+wedges, IQN-ILS) for 0.2 s from rest at p_sub 400, 800 and 1200 Pa; with
+--check, the 800 Pa run for 0.1 s on the finer mesh (h_gap 0.035 mm) and
+at Δt 1e-5 (2 ranks), its cycles from 50 ms to 0.1 s compared with the
+800 Pa run's over the same window.
 
-The 0.2 s runs go on 2 ranks, one at a time (about 20 min each); a run
+The runs go on 2 ranks, one at a time (about 20 min per 0.2 s); a run
 whose summary.json exists is not repeated. Writes
 bench/results/glottis_elastic_fe.csv (and glottis_elastic_fe_check.csv)
 and prints Markdown tables.
 
 With --scheme, is the fold's step what the Δt check sees? The same fold
 (clamped ends) under the Bernoulli flow at 800 Pa, 0.2 s, serially, at
-Δt 2e-5 and 1e-5 with Newmark γ 0.5 (the trapezoidal rule), γ 0.6 (the
-preset's) and generalised-α ρ∞ 0.8 (E18a): how much each step's f0 and
-peak flow move when Δt is halved. Writes glottis_elastic_scheme.csv.
+Δt 2e-5 and 1e-5 with Newmark γ 0.5 (the trapezoidal rule), γ 0.6 and
+generalised-α ρ∞ 0.8 (E18a): how much each step's f0 and peak flow move
+when Δt is halved. Writes glottis_elastic_scheme.csv.
 
-With --cuts, the Δt check with the failed steps cut (E13b, --fe.step_cuts
-2), with the preset's Newmark γ 0.6 and with generalised-α ρ∞ 0.8:
-800 Pa, 0.1 s, 2 ranks, at Δt 2e-5 and 1e-5, the cycles from 50 ms to
-0.1 s of each Δt 1e-5 run against its Δt 2e-5 partner; and the porous
-floor held at the other Δt's value (--closure.porous_floor_dt)
+With --cuts, the runs that chose the preset's fold step and τ_m (800 Pa,
+0.1 s, 2 ranks, step cuts): Newmark γ 0.6 (the former preset) and
+generalised-α ρ∞ 0.8 at Δt 2e-5, 1e-5 (γ 0.6 also 5e-6) with τ_m
+following Δt, and at Δt 1e-5 with τ_m's step held at 2e-5
+(--fluid.tau_step); the porous floor held at the other Δt's value
+(--closure.porous_floor_dt). Each run's cycles from 50 ms to 0.1 s
+against its partner's: the same settings at the next larger Δt, or for
+τ_m held, the same Δt with τ_m following it
 (glottis_elastic_fe_cuts.csv, glottis_elastic_fe_cuts_check.csv).
 
 usage: bench/glottis_elastic_fe.py [--check] [--scheme] [--cuts] [--cached] [BUILD_DIR]
@@ -44,28 +47,38 @@ out = results_dir()
 common = ["--config", os.path.join(here, "..", "demos", "glottis", "elastic_fe.toml"),
           "--duration", "0.2"]
 cases = [(f"p{p}", 2, ["--p-sub", str(p)]) for p in (800, 1200, 400)]
-check = [("p800_h0.035", 1, ["--p-sub", "800", "--duration", "0.1", "--fe.h_gap", "0.035e-3"]),
-         ("p800_dt1e-5", 1, ["--p-sub", "800", "--duration", "0.1", "--dt", "1e-5"]),
-         ("p800_alpha0.8", 2, ["--p-sub", "800", "--duration", "0.1",
-                               "--elastic.rho_inf", "0.8"])]
+check = [("p800_h0.035", 2, ["--p-sub", "800", "--duration", "0.1", "--fe.h_gap", "0.035e-3"]),
+         ("p800_dt1e-5", 2, ["--p-sub", "800", "--duration", "0.1", "--dt", "1e-5"])]
+# The runs that led to the preset's fold step and τ_m (0.1 s at 800 Pa,
+# step cuts as in the preset): Newmark γ 0.6 (the former preset) or
+# generalised-α ρ∞ 0.8 (the preset's), τ_m following Δt or held at 2e-5
+newmark = ["--elastic.rho_inf", "-1", "--elastic.newmark_gamma", "0.6"]
+follow, held = ["--fluid.tau_step", "0"], ["--fluid.tau_step", "2e-5"]
 cuts = []
-for name, opts in [("cuts2", ["--fe.step_cuts", "2"]),
-                   ("alpha0.8_cuts2", ["--fe.step_cuts", "2", "--elastic.rho_inf", "0.8"])]:
-    for dt in ("2e-5", "1e-5"):
-        cuts.append((f"p800_{name}" + ("_dt1e-5" if dt == "1e-5" else ""), 2,
-                     ["--p-sub", "800", "--duration", "0.1", "--dt", dt] + opts))
+for name, opts, steps in [("cuts2", newmark + follow, ("2e-5", "1e-5", "5e-6")),
+                          ("alpha0.8_cuts2", follow, ("2e-5", "1e-5")),
+                          ("cuts2", newmark + held, ("1e-5-tau",)),
+                          ("alpha0.8_cuts2", held, ("1e-5-tau",))]:
+    for step in steps:
+        dt = step.split("-tau")[0]
+        label = f"p800_{name}" + (f"_dt{dt}" if dt != "2e-5" else "") + \
+            ("_tau2e-5" if step.endswith("-tau") else "")
+        cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt] + opts))
 # The porous ramp's floor χ_0 = 0.01 ρ/(σ_P Δt) changes with Δt (G4): Δt 2e-5
 # with the floor of Δt 1e-5, against the Δt 1e-5 run
 # (it fails), and Δt 1e-5 with the floor of Δt 2e-5, against the Δt 2e-5 run
 for label, dt, floor in [("p800_cuts2_floor1e-5", "2e-5", "1e-5"),
                          ("p800_cuts2_dt1e-5_floor2e-5", "1e-5", "2e-5")]:
     cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt,
-                            "--fe.step_cuts", "2", "--closure.porous_floor_dt", floor]))
+                            "--closure.porous_floor_dt", floor] + newmark + follow))
 cuts_mode = "--cuts" in sys.argv
 suffix = "_cuts" if cuts_mode else ""
 # Each run's reference in the check table: with --check the 0.2 s run at
 # 800 Pa, with --cuts its Δt partner (a run without one is its own)
 partners = {c[0]: "p800" for c in check} if not cuts_mode else {"p800_cuts2_dt1e-5": "p800_cuts2",
+            "p800_cuts2_dt5e-6": "p800_cuts2_dt1e-5",
+            "p800_cuts2_dt1e-5_tau2e-5": "p800_cuts2_dt1e-5",
+            "p800_alpha0.8_cuts2_dt1e-5_tau2e-5": "p800_alpha0.8_cuts2_dt1e-5",
             "p800_alpha0.8_cuts2_dt1e-5": "p800_alpha0.8_cuts2",
             "p800_cuts2_floor1e-5": "p800_cuts2_dt1e-5",
             "p800_cuts2_dt1e-5_floor2e-5": "p800_cuts2"}

@@ -4,6 +4,7 @@
 #include "catch.h"
 #include <ale/PrescribedMotion.h>
 #include <array>
+#include <cmath>
 #include <common/log.h>
 #include <dolfinx/mesh/generation.h>
 #include <dolfinx/mesh/utils.h>
@@ -465,6 +466,48 @@ TEST_CASE("COO matrix assembly gives DOLFINx's matrix and lifting: the same "
                   g[0], g[1]);
   CHECK(g[1] > 0.1);
   CHECK(g[0] < 1e-10 * g[1]);
+}
+
+TEST_CASE("SUPG/PSPG tau_m with its step held (--fluid.tau_step): the "
+          "steady state reached by time stepping does not depend on dt; with "
+          "tau_m following dt it does",
+          "[fluid]")
+{
+  // E20: at a steady state the BDF2 terms vanish, so the only way Δt
+  // enters the solution is τ_m's transient term (2/Δt_τ)². A viscous
+  // channel (decay time H²/(π²ν) = 0.08 s) stepped to t = 2 s at Δt 0.02
+  // and 0.01, with Δt_τ = Δt and with Δt_τ held at 0.02
+  const double H = 0.2, Umax = 1.0;
+  Channel c = channel(1.0, H, 40, 8);
+  fsai::fluid::FluidBoundaries b;
+  b.inlet_dirichlet = c.inlet;
+  b.outlet = c.outlet;
+  b.walls = c.walls;
+  auto steady = [&](double dt, double tau_step)
+  {
+    fsai::fluid::FluidParameters p;
+    p.rho = 1.0;
+    p.mu = 0.05;
+    p.tau_step = tau_step;
+    fsai::fluid::FluidSolver flow(c.mesh, b, p, dt);
+    set_parabolic_inflow(flow, Umax, H);
+    for (int k = 0; k < int(std::lround(2.0 / dt)); ++k)
+      flow.step();
+    std::vector<double> s(flow.velocity()->x()->array().begin(),
+                          flow.velocity()->x()->array().end());
+    s.insert(s.end(), flow.pressure()->x()->array().begin(),
+             flow.pressure()->x()->array().end());
+    return s;
+  };
+  const auto coarse = steady(0.02, 0.0);
+  const auto held = fsai::test::max_difference(coarse, steady(0.01, 0.02));
+  const auto following = fsai::test::max_difference(coarse, steady(0.01, 0.0));
+  fsai::log::info("Steady channel by time stepping, dt 0.02 vs 0.01: max "
+                  "difference {:.2e} with tau_m's step held, {:.2e} with it "
+                  "following dt (largest dof {:.3e})",
+                  held[0], following[0], held[1]);
+  CHECK(held[0] < 1e-8 * held[1]);
+  CHECK(following[0] > 1e-4 * following[1]);
 }
 
 TEST_CASE("Quadrature degree 2: the Galerkin system of degree 4 exactly, and "

@@ -29,6 +29,15 @@ std::size_t owned_entries(const dolfinx::fem::Function<double>& f)
   const auto& map = *f.x()->map();
   return std::size_t(map.size_local()) * f.x()->bs();
 }
+
+// 1/Δt_τ of τ_m's transient term (E20): the run's step, a fixed one, or
+// none (the steady τ_m)
+double inverse_tau_step(const fsai::fluid::FluidParameters& p, double dt)
+{
+  if (!p.tau_dt)
+    return 0.0;
+  return 1.0 / (p.tau_step > 0 ? p.tau_step : dt);
+}
 } // namespace
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
@@ -41,6 +50,9 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
   p.add("fluid.tau_dt", tau_dt,
         "SUPG/PSPG tau_m with its transient term (2/dt)^2 (false: tau of "
         "the steady problem)");
+  p.add("fluid.tau_step", tau_step,
+        "the step in tau_m's transient term (2/dt_tau)^2 [s] (0: the run's "
+        "dt; fixed: tau_m does not change with dt or at a cut step)");
   p.add("fluid.picard", picard, "linear solves per time step (1: Oseen)");
   p.add("fluid.picard_tol", picard_tol, "Picard tolerance on |dv|/|v|");
   p.add("fluid.sigma_p", sigma_p, "porous inverse permeability [kg/(m^3 s)]");
@@ -70,6 +82,7 @@ void fsai::fluid::FluidParameters::validate() const
 {
   fsai::require_positive("--fluid.rho", rho);
   fsai::require_positive("--fluid.mu", mu);
+  fsai::require(tau_step >= 0, "--fluid.tau_step", ">= 0", tau_step);
   fsai::require(picard >= 1 and picard <= 100, "--fluid.picard", "in [1, 100]",
                 picard);
   fsai::require_positive("--fluid.picard_tol", picard_tol);
@@ -153,7 +166,7 @@ void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
   _a0 = constant(0.0);
   _a1 = constant(0.0);
   _a2 = constant(0.0);
-  _inv_dt = constant(p.tau_dt ? 1.0 / _dt : 0.0);
+  _inv_dt = constant(inverse_tau_step(p, _dt));
   _p_in = constant(p.p_in);
   std::map<std::string, std::shared_ptr<const fem::Constant<double>>> c
       = {{"rho", constant(p.rho)},
@@ -438,15 +451,13 @@ int fsai::fluid::FluidSolver::step()
   // the ratio r = Δt/Δt_n)
   const auto w = common::bdf2_weights(dt, _dt_n, _steps == 0);
   _a0->value[0] = w.w0, _a1->value[0] = w.w1, _a2->value[0] = w.w2;
-  _inv_dt->value[0] = _par.tau_dt ? 1 / dt : 0.0;
+  _inv_dt->value[0] = inverse_tau_step(_par, dt);
   // Oseen: convecting velocity extrapolated to t_{n+1} (E20),
   // v_n + r (v_n − v_nn) (v_n at start)
   {
     const double r = _steps == 0 ? 0.0 : dt / _dt_n;
-    auto vs = _v_star->x()->mutable_array();
-    auto vn = _v_n->x()->array(), vnn = _v_nn->x()->array();
-    for (std::size_t i = 0; i < vs.size(); ++i)
-      vs[i] = (1 + r) * vn[i] - r * vnn[i];
+    common::extrapolate(_v_star->x()->mutable_array(), _v_n->x()->array(),
+                        _v_nn->x()->array(), r);
   }
   _t += dt;
   int solves = 0;

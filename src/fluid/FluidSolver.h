@@ -45,6 +45,11 @@ struct FluidParameters
   /// through τ (Hsu, Bazilevs, Calo, Tezduyar & Hughes 2010, CMAME 199,
   /// 828–840, on the small-time-step degradation of SUPG/PSPG)
   bool tau_dt = true;
+  /// The step Δt_τ in τ_m's transient term (2/Δt_τ)² [s]; 0: the run's Δt.
+  /// Held fixed, τ_m (and with it the stabilised spatial discretisation)
+  /// stays the same when Δt is halved or a step is cut, so that a Δt
+  /// study measures the time discretisation alone
+  double tau_step = 0.0;
   int picard = 1;           ///< linear solves per time step (1: Oseen)
   double picard_tol = 1e-6; ///< on |Δv|/|v| when picard > 1 or steady
   double sigma_p = 0.0;     ///< porous inverse permeability [kg/(m³ s)]

@@ -3,6 +3,7 @@
 #include "waveform.h"
 #include <algorithm>
 #include <cmath>
+#include <common/bdf.h>
 #include <common/errors.h>
 #include <common/log.h>
 #include <common/mpi_gather.h>
@@ -228,8 +229,7 @@ std::vector<double> fsai::glottis::ElasticFlowGlottis::predict()
   const auto& flow = _channel->flow();
   const double r = flow.dt() / flow.dt_previous();
   std::vector<double> p(_p_n.size());
-  for (std::size_t k = 0; k < p.size(); ++k)
-    p[k] = (1 + r) * _p_n[k] - r * _p_nn[k];
+  common::extrapolate(p, _p_n, _p_nn, r);
   // The trial step is repeated by the first evaluation (H restores the
   // fold's state first)
   _fold.restore_state();
