@@ -45,6 +45,16 @@ Channel channel(double L, double H, std::size_t nx, std::size_t ny)
   return c;
 }
 
+/// The velocity dofs followed by the pressure dofs
+std::vector<double> velocity_and_pressure(const fsai::fluid::FluidSolver& flow)
+{
+  std::vector<double> up(flow.velocity()->x()->array().begin(),
+                         flow.velocity()->x()->array().end());
+  up.insert(up.end(), flow.pressure()->x()->array().begin(),
+            flow.pressure()->x()->array().end());
+  return up;
+}
+
 /// Parabolic inflow u = 4 Umax y (H − y) / H², v = 0 (2D)
 void set_parabolic_inflow(fsai::fluid::FluidSolver& flow, double Umax, double H)
 {
@@ -82,10 +92,7 @@ struct Dfg2d1
     set_parabolic_inflow(flow, 0.3, 0.41);
     flow.solve_steady(100);
     Result r;
-    r.up.assign(flow.velocity()->x()->array().begin(),
-                flow.velocity()->x()->array().end());
-    r.up.insert(r.up.end(), flow.pressure()->x()->array().begin(),
-                flow.pressure()->x()->array().end());
+    r.up = velocity_and_pressure(flow);
     auto pr = taps.values(*flow.pressure());
     r.dp = pr[0] - pr[1];
     r.grad_p = flow.pressure_gradient_norm();
@@ -454,11 +461,7 @@ TEST_CASE("COO matrix assembly gives DOLFINx's matrix and lifting: the same "
     set_parabolic_inflow(flow, Umax, H);
     for (int k = 0; k < 10; ++k)
       flow.step();
-    std::vector<double> s(flow.velocity()->x()->array().begin(),
-                          flow.velocity()->x()->array().end());
-    s.insert(s.end(), flow.pressure()->x()->array().begin(),
-             flow.pressure()->x()->array().end());
-    up.push_back(s);
+    up.push_back(velocity_and_pressure(flow));
   }
   const auto g = fsai::test::max_difference(up[0], up[1]);
   fsai::log::info("COO vs DOLFINx assembly, 10 steps: max difference of the "
@@ -493,11 +496,7 @@ TEST_CASE("SUPG/PSPG tau_m with its step held (--fluid.tau_step): the "
     set_parabolic_inflow(flow, Umax, H);
     for (int k = 0; k < int(std::lround(2.0 / dt)); ++k)
       flow.step();
-    std::vector<double> s(flow.velocity()->x()->array().begin(),
-                          flow.velocity()->x()->array().end());
-    s.insert(s.end(), flow.pressure()->x()->array().begin(),
-             flow.pressure()->x()->array().end());
-    return s;
+    return velocity_and_pressure(flow);
   };
   const auto coarse = steady(0.02, 0.0);
   const auto held = fsai::test::max_difference(coarse, steady(0.01, 0.02));
