@@ -7,10 +7,9 @@ for the elastic fold (its plane-strain fold does not close every cycle at
 800 Pa, docs/glottis.md). f0, open quotient, peak and mean flow, MFDR, SPL,
 H1–H2 and the sound's F1/F2 (summary.json "voice").
 
-With --flow fe, the full voice (FE flow, FE sound, 2 ranks, 0.1 s): the
-2-DOF fold on the voice's defaults, the elastic fold with the glottis
-scene's preset demos/glottis/elastic_fe.toml under its former fold step
-(Newmark γ 0.6, no step cuts, τ_m following Δt).
+With --flow fe, the full voice (FE flow, FE sound, 2 ranks, 0.1 s): each
+fold on the voice's defaults (`fsai_demo` and `fsai_demo --fold elastic`:
+the elastic fold on the glottis preset's settings and flow mesh).
 
 usage: bench/voice_folds.py [BUILD_DIR] [--p_sub 800] [--vowel u]
                             [--duration 0.3] [--acoustics 1d,fe]
@@ -45,13 +44,7 @@ out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
 folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]}
 if fe_flow:
-    # The table in docs/voice.md was made with the preset's former fold
-    # step (Newmark γ 0.6, no step cuts, τ_m following Δt), which these
-    # options restore; the voice under today's preset is not yet measured
-    folds["elastic"] = ["--config", os.path.join(here, "..", "demos", "glottis",
-                                                 "elastic_fe.toml"),
-                        "--elastic.rho_inf", "-1", "--elastic.newmark_gamma", "0.6",
-                        "--fe.step_cuts", "0", "--fluid.tau_step", "0"]
+    folds["elastic"] = ["--fold", "elastic"]
 rows = []
 runs = [(p, ac, fold) for p in args.p_sub.split(",")
         for ac in args.acoustics.split(",") for fold in folds]

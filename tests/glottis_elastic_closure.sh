@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The elastic fold in the FE flow through one closure (issue: the elastic
-# fold in the closing glottis): 800 Pa, clamped ends, the 0.1 mm mesh, the
-# porous ramp at half the mesh size. The glottis must close (the fold
+# fold in the closing glottis): 800 Pa, the 0.1 mm mesh, the porous ramp at
+# half the mesh size, the elastic FE fold's other defaults (clamped ends,
+# generalised-α, step cuts, τ_m held, local lift, remeshing, IQN-ILS). The glottis must close (the fold
 # crosses the axis) and open again within the run, with every coupling step
 # converged, and 2 ranks must give the serial series.csv within 1e-6.
 # usage: glottis_elastic_closure.sh MPIEXEC FSAI_GLOTTIS

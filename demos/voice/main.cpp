@@ -15,13 +15,15 @@
 //            transmission line (A9), 0.1 s of voice in well under a second.
 // Each step: the glottis's step, then one step of the sound with the same
 // Δt (voice::VoiceAcoustics). --fold elastic puts the plane-strain FE fold
-// in the glottis (with the 1D acoustics).
+// in the glottis, in the FE flow on the glottis preset's settings
+// (glottis::apply_elastic_fe_defaults).
 //
 // Sample runs:
 //   mpirun -n 2 ./fsai_demo --vowel u        # 0.1 s of voice
 //   ./fsai_demo --quick                      # short coarse run
 //   ./fsai_demo --flow bernoulli --acoustics 1d --vowel a
 //   ./fsai_demo --flow bernoulli --acoustics 1d --fold elastic
+//   mpirun -n 2 ./fsai_demo --fold elastic --vowel u --p-sub 800
 //   ./fsai_demo --vowel a --radiation pml
 //   ./fsai_demo --tract tube                 # a short straight tube
 //
@@ -64,7 +66,7 @@ int main(int argc, char* argv[])
         scene.bind(params);
         scene.apply_quick(rt.app_args());
         params.parse(rt.app_args());
-        scene.validate();
+        scene.validate(params);
         params.print();
         io::prepare_output_dir(rt.comm(), vp.output);
         io::RunSummary summary(rt.comm(), rt.program());

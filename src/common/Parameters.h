@@ -50,6 +50,15 @@ public:
   /// (a scene may then choose its own default for it)
   bool given(const std::string& key) const;
 
+  /// `value`, bound under `key`, set to `preset` unless the key was given:
+  /// a scene's own default for an option shared with other scenes
+  template <typename T, typename U>
+  void set_unless_given(const std::string& key, T& value, const U& preset) const
+  {
+    if (!given(key))
+      value = preset;
+  }
+
   /// Path given by --config ("" if none)
   const std::string& config_file() const { return _config_file; }
 

@@ -78,6 +78,14 @@ make_glottis(MPI_Comm comm, const FoldProfile& profile, const std::string& flow,
              const BernoulliGlottisParameters& bernoulli, double ramp,
              const std::string& coupling_csv, std::size_t rows_kept);
 
+/// The elastic fold in the FE flow (--fold elastic --flow fe) through
+/// closure: the settings its validation was run with (docs/glottis.md, "The
+/// elastic fold in the FE flow"), put in for every one of them not given
+/// on the command line or in the config file (fsai_glottis and fsai_demo)
+void apply_elastic_fe_defaults(const fsai::common::Parameters& p,
+                               FlowGlottisSetup& setup,
+                               ElasticFoldParameters& elastic);
+
 /// --onset_sweep: linear stability of the reduced model at each p_sub
 /// (printed and written to DIR/onset.csv)
 void onset_sweep(MPI_Comm comm, const GlottisScene& s,

@@ -175,8 +175,27 @@ void fsai::voice::VoiceScene::apply_quick(const std::vector<std::string>& args)
   voice.write_every = 0;
 }
 //-----------------------------------------------------------------------------
-void fsai::voice::VoiceScene::validate()
+void fsai::voice::VoiceScene::validate(const fsai::common::Parameters& p)
 {
+  if (voice.fold == "elastic" and voice.flow == "fe")
+  {
+    glottis::apply_elastic_fe_defaults(p, glottis, elastic);
+    // The elastic fold on the glottis scene's flow mesh and quadrature, the
+    // mesh of its validation (docs/glottis.md), not on the voice's 0.035 mm
+    // mesh (set above for the 2-DOF fold's forces), which costs the elastic
+    // voice 1.6x the time; --quick keeps its coarse mesh
+    const glottis::FlowGlottisSetup scene;
+    if (!voice.quick)
+    {
+      p.set_unless_given("fe.h_gap", glottis.fe.sizes.h_gap,
+                         scene.fe.sizes.h_gap);
+      p.set_unless_given("fe.h_far", glottis.fe.sizes.h_far,
+                         scene.fe.sizes.h_far);
+      p.set_unless_given("fluid.quadrature_degree",
+                         glottis.fluid.quadrature_degree,
+                         scene.fluid.quadrature_degree);
+    }
+  }
   voice.validate();
   source.validate();
   glottis.validate(voice.p_sub, voice.dt);

@@ -97,7 +97,10 @@ struct VoiceScene
   /// --quick: coarse defaults, set before parsing so that any option given
   /// with it still overrides them
   void apply_quick(const std::vector<std::string>& args);
-  void validate();
+  /// Checks and fold-dependent defaults (after parsing): the elastic fold
+  /// in the FE flow on the glottis preset's settings
+  /// (glottis::apply_elastic_fe_defaults) and flow mesh
+  void validate(const fsai::common::Parameters& p);
   /// The glottis (--flow × --fold), its coupling log continued after
   /// `rows_kept` rows on a restart
   std::unique_ptr<glottis::GlottisModel>
