@@ -117,7 +117,6 @@ if "--scheme" in sys.argv:
     sys.exit(0)
 
 
-
 def pair_sem(peaks):
     """The standard error of the mean of the cycle peaks. The cycles
     alternate large/small, so the spread is taken over the means of

@@ -42,9 +42,8 @@ if fe_flow:
 exe = os.path.join(args.build, "demos", "fsai_demo")
 out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
+# Clamped ends: given for the Bernoulli flow, the default in the FE flow
 folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]}
-if fe_flow:
-    folds["elastic"] = ["--fold", "elastic"]
 rows = []
 runs = [(p, ac, fold) for p in args.p_sub.split(",")
         for ac in args.acoustics.split(",") for fold in folds]
