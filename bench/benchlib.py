@@ -76,6 +76,29 @@ def first_harmonic(t, y, period):
     return 2 / period * np.trapz(y * e, t)
 
 
+def subharmonic_ratio(t, x, starts, f_max=1000.0):
+    """The subharmonic-to-harmonic ratio of docs/model.md A10 (as
+    fsai::voice::subharmonic_ratio): x sampled at the uniform times t, over
+    the largest even number 2M of whole cycles starting at `starts` (M >= 2,
+    else nan); the Hann-weighted window's components at the half-integer
+    multiples of the pulse rate, summed, over those at its multiples up to
+    f_max."""
+    n = len(starts)
+    M = (n - 1) // 2 if n > 0 else 0
+    if M < 2:
+        return float("nan")
+    t0, L = starts[0], starts[2 * M] - starts[0]
+    s = (t - t0) / L
+    w = (s >= 0) & (s <= 1)
+    xw = x[w] * (0.5 - 0.5 * np.cos(2 * np.pi * s[w]))
+
+    def component(bins):
+        return abs(np.sum(xw * np.exp(-2j * np.pi * bins * s[w])))
+    K = max(1, int(f_max * L / (2 * M)))
+    return (sum(component(2 * M * k - M) for k in range(1, K + 1))
+            / sum(component(2 * M * k) for k in range(1, K + 1)))
+
+
 def glottal_cycles(path, g_cross, t_start):
     """One dict per whole cycle of a glottis run's series.csv (none if the
     file is missing). A cycle runs from one upward crossing of the half-gap

@@ -29,16 +29,30 @@ against its partner's: the same settings at the next larger Δt, or for
 τ_m held, the same Δt with τ_m following it
 (glottis_elastic_fe_cuts.csv, glottis_elastic_fe_cuts_check.csv).
 
-usage: bench/glottis_elastic_fe.py [--check] [--scheme] [--cuts] [--cached] [BUILD_DIR]
+With --subharmonics, do the cycles alternate for good? The subharmonic
+ratio of the glottal flow (docs/model.md A10) over the cycles in 50 ms
+windows of the 400, 800 and 1200 Pa runs, and of the same fold under the
+Bernoulli flow at 800 Pa (0.2 s, serially; started if missing), there
+also with p_sub ramped up over 30 ms instead of 5 ms: the fold's lowest
+in-vacuo mode (66.9 Hz, clamped ends) lies at half the pulse rate
+(glottis_elastic_fe_subharmonics.csv).
+
+With --deeper, the 1200 Pa run with step cuts down to Δt/16
+(--fe.step_cuts 4) instead of Δt/4: does cutting further avoid the
+unconverged steps at reopening? (It stops at 176.8 ms: docs/glottis.md.)
+
+usage: bench/glottis_elastic_fe.py [--check] [--scheme] [--cuts] [--subharmonics] [--deeper]
+                                   [--cached] [BUILD_DIR]
 (--cached: tables from the runs already in bench/results, none started)
 """
+import json
 import os
 import sys
 
 import numpy as np
 
-from benchlib import (MPI_ENV, glottal_cycles, print_markdown_table, results_dir, timed_run,
-                      write_rows)
+from benchlib import (MPI_ENV, glottal_cycles, print_markdown_table, read_float_rows, results_dir,
+                      subharmonic_ratio, timed_run, write_rows)
 
 args = [a for a in sys.argv[1:] if not a.startswith("--")]
 here = os.path.dirname(os.path.abspath(__file__))
@@ -73,7 +87,7 @@ for label, dt, floor in [("p800_cuts2_floor1e-5", "2e-5", "1e-5"),
     cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt,
                             "--closure.porous_floor_dt", floor] + newmark + follow))
 cuts_mode = "--cuts" in sys.argv
-suffix = "_cuts" if cuts_mode else ""
+suffix = "_cuts" if cuts_mode else "_deeper" if "--deeper" in sys.argv else ""
 # Each run's reference in the check table: with --check the 0.2 s run at
 # 800 Pa, with --cuts its Δt partner (a run without one is its own)
 partners = {c[0]: "p800" for c in check} if not cuts_mode else {"p800_cuts2_dt1e-5": "p800_cuts2",
@@ -85,6 +99,8 @@ partners = {c[0]: "p800" for c in check} if not cuts_mode else {"p800_cuts2_dt1e
             "p800_cuts2_dt1e-5_floor2e-5": "p800_cuts2"}
 if "--check" in sys.argv:
     cases = check + cases
+if "--deeper" in sys.argv:
+    cases = [("p1200_cuts4", 2, ["--p-sub", "1200", "--fe.step_cuts", "4"])]
 if cuts_mode:
     cases = cuts
 
@@ -117,6 +133,47 @@ if "--scheme" in sys.argv:
     sys.exit(0)
 
 
+if "--subharmonics" in sys.argv:
+    windows = [(0.05, 0.1), (0.1, 0.15), (0.15, 0.2)]
+    runs = [(f"FE flow, {p} Pa", f"run_glottis_elastic_fe_p{p}") for p in (400, 800, 1200)]
+    for ramp in ("", "0.03"):
+        folder = "run_glottis_elastic_bernoulli_p800" + (f"_ramp{ramp}" if ramp else "")
+        if "--cached" not in sys.argv:
+            timed_run([exe, "--flow", "bernoulli", "--fold", "elastic", "--elastic.clamped_ends",
+                       "--p-sub", "800", "--duration", "0.2", "--output",
+                       os.path.join(out, folder)] + (["--ramp", ramp] if ramp else []),
+                      os.path.join(out, folder))
+        runs.append((f"Bernoulli flow, 800 Pa, ramp {1e3 * float(ramp or 5e-3):.0f} ms", folder))
+    hrows = []
+    for name, folder in runs:
+        path = os.path.join(out, folder, "series.csv")
+        if not os.path.exists(os.path.join(out, folder, "summary.json")):
+            continue
+        r = read_float_rows(path)
+        t, q, g = (np.array([x[k] for x in r]) for k in ("t_s", "Q_m3s", "gap_m"))
+        with open(os.path.join(out, folder, "summary.json")) as f:
+            s = json.load(f)
+        # the gap's swing over the later half: does the fold oscillate?
+        row = {"run": name, "closes_every_cycle": int(s["closes_every_cycle"]),
+               "gap_swing_um": 1e6 * float(np.ptp(g[t >= 0.1]))}
+        for a, b in windows:
+            # cycles at the middle of the half-gap's 1-99 % range (a one-step
+            # excursion leaves it in place)
+            lo, hi = np.percentile(g[(t >= a) & (t < b)], [1, 99])
+            cyc = [c for c in glottal_cycles(path, (lo + hi) / 2, a) if c["t0_s"] + 1 / c["f0_hz"] <= b]
+            starts = [c["t0_s"] for c in cyc] + ([cyc[-1]["t0_s"] + 1 / cyc[-1]["f0_hz"]] if cyc else [])
+            row[f"shr_{1e3 * a:.0f}_{1e3 * b:.0f}ms"] = subharmonic_ratio(t, q, starts)
+        hrows.append(row)
+    write_rows(os.path.join(out, "glottis_elastic_fe_subharmonics.csv"), hrows)
+    print_markdown_table([("run", lambda r: r["run"]),
+                          ("gap swing after 0.1 s [µm]", lambda r: f"{r['gap_swing_um']:.0f}"),
+                          ("closes", lambda r: "every cycle" if r["closes_every_cycle"] else "no")] + [
+        (f"SHR {1e3 * a:.0f}-{1e3 * b:.0f} ms",
+         lambda r, k=f"shr_{1e3 * a:.0f}_{1e3 * b:.0f}ms": "–" if np.isnan(r[k]) else f"{r[k]:.3f}")
+        for a, b in windows], hrows)
+    sys.exit(0)
+
+
 def pair_sem(peaks):
     """The standard error of the mean of the cycle peaks. The cycles
     alternate large/small, so the spread is taken over the means of
@@ -145,6 +202,8 @@ for label, ranks, extra in cases:
                  "coupling_iterations_mean": s["coupling_iterations_mean"],
                  "coupling_unconverged_steps": s["coupling_unconverged_steps"],
                  "flow_dofs": s["flow_dofs"], "wall_s": s["process_wall_s"]})
+if not rows:
+    sys.exit("no run finished (a failed run leaves its log and last good state in its folder)")
 write_rows(os.path.join(out, f"glottis_elastic_fe{suffix}.csv"), rows)
 print_markdown_table([
     ("case", lambda r: r["case"]),

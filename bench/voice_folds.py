@@ -5,11 +5,14 @@ the 1D tract (reduced) and the FE tract (mixed), the same p_sub and vowel,
 clamped fold ends
 for the elastic fold (its plane-strain fold does not close every cycle at
 800 Pa, docs/glottis.md). f0, open quotient, peak and mean flow, MFDR, SPL,
-H1–H2 and the sound's F1/F2 (summary.json "voice").
+H1–H2, the subharmonic ratio of the sound and of the flow, and the
+sound's F1/F2 (summary.json "voice").
 
 With --flow fe, the full voice (FE flow, FE sound, 2 ranks, 0.1 s): each
 fold on the voice's defaults (`fsai_demo` and `fsai_demo --fold elastic`:
-the elastic fold on the glottis preset's settings and flow mesh).
+the elastic fold on the glottis preset's settings and flow mesh). A
+duration other than the default goes into the run folders' names
+(_<duration>s); --folds picks the folds (2dof,elastic).
 
 usage: bench/voice_folds.py [BUILD_DIR] [--p_sub 800] [--vowel u]
                             [--duration 0.3] [--acoustics 1d,fe]
@@ -32,25 +35,35 @@ ap.add_argument("--duration", default="0.3")
 ap.add_argument("--acoustics", default="1d,fe",
                 help="the sound's fidelities (fsai_demo --acoustics)")
 ap.add_argument("--flow", default="bernoulli", choices=["bernoulli", "fe"])
+ap.add_argument("--folds", default="2dof,elastic")
 ap.add_argument("--rerun", action="store_true")
 args = ap.parse_args()
 fe_flow = args.flow == "fe"
+default_duration = "0.1" if fe_flow else "0.3"
 if fe_flow:
     args.acoustics = "fe"
     if args.duration == "0.3":
-        args.duration = "0.1"
+        args.duration = default_duration
 exe = os.path.join(args.build, "demos", "fsai_demo")
 out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
 # Clamped ends: given for the Bernoulli flow, the default in the FE flow
 folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]}
 rows = []
+
+
+def nan_if_none(x):
+    """A summary's measure (null where it could not be taken, or absent)"""
+    return float("nan") if x is None else x
+
+
 runs = [(p, ac, fold) for p in args.p_sub.split(",")
-        for ac in args.acoustics.split(",") for fold in folds]
+        for ac in args.acoustics.split(",") for fold in args.folds.split(",")]
 for p, ac, fold in runs:
     opts = folds[fold]
     d = os.path.join(out, f"run_folds_{fold}_{p}" + ("" if ac == "1d" else f"_{ac}")
-                     + ("_flowfe" if fe_flow else ""))
+                     + ("_flowfe" if fe_flow else "")
+                     + ("" if args.duration == default_duration else f"_{args.duration}s"))
     launch = ["mpirun", "-n", "2", exe] if fe_flow else [exe]
     s = timed_run(launch + ["--flow", args.flow, "--acoustics", ac,
                    "--vowel", args.vowel, "--p-sub", p,
@@ -65,15 +78,19 @@ for p, ac, fold in runs:
                      oq=v["open_quotient"], q_peak_ls=v["q_peak_ls"],
                      q_mean_ls=v["q_mean_ls"], mfdr_ls2=v["mfdr_ls2"],
                      spl_db=v["spl_db"], h1_h2_db=v["h1_h2_db"],
+                     shr=nan_if_none(v.get("shr")), shr_flow=nan_if_none(v.get("shr_flow")),
                      jitter_pct=v["jitter_pct"], f1_hz=F[0], f2_hz=F[1],
                      wall_s=wall))
     r = rows[-1]
     print(f"{fold:8s} {ac} {p} Pa: f0 {r['f0_hz']:.1f} Hz (sound {r['sound_f0_hz']:.1f}), "
           f"OQ {r['oq']:.3f}, Q peak {r['q_peak_ls']:.3f} mean {r['q_mean_ls']:.3f} l/s, "
           f"MFDR {r['mfdr_ls2']:.0f} l/s², SPL {r['spl_db']:.1f} dB, H1-H2 {r['h1_h2_db']:.1f} dB, "
+          f"SHR {r['shr']:.3f} (flow {r['shr_flow']:.3f}), "
           f"F1/F2 {r['f1_hz']:.0f}/{r['f2_hz']:.0f} Hz, jitter {r['jitter_pct']:.2f} %, "
           f"wall {wall:.1f} s", flush=True)
-with open(os.path.join(out, "voice_folds_fe.csv" if fe_flow else "voice_folds.csv"), "w",
+table = "voice_folds" + ("_fe" if fe_flow else "") \
+    + ("" if args.duration == default_duration else f"_{args.duration}s") + ".csv"
+with open(os.path.join(out, table), "w",
           newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
     w.writeheader()

@@ -379,6 +379,31 @@ TEST_CASE("Voice measures of a harmonic series: H1-H2, HNR, shimmer (A10)",
     CHECK(s.shimmer_pct == Approx(0.0).margin(0.01));
     CHECK(s.hnr_db > 60);
     CHECK(s.spl_db == Approx(10 * std::log10(Ph / 4e-10)).margin(0.01));
+    CHECK(s.shr == Approx(0.0).margin(1e-3));
+  }
+  SECTION("period doubled: the subharmonic ratio of the added series")
+  {
+    // Subharmonics at f/2 and 3f/2 of amplitudes 0.2 and 0.1: SHR = 0.3 /
+    // (1 + 0.5 + 0.3); the sound now repeats every 2T, its f0 halved
+    std::vector<double> p(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double t = dt * double(i);
+      p[i] = harmonic(i) + 0.2 * std::sin(M_PI * t / T + 0.5)
+             + 0.1 * std::sin(3 * M_PI * t / T);
+    }
+    const auto s = fsai::voice::sound_measures(p, dt, b);
+    CHECK(s.shr == Approx(0.3 / 1.8).epsilon(1e-3));
+    CHECK(s.h1_h2_db == Approx(20 * std::log10(2.0)).margin(0.01));
+    CHECK(fsai::acoustics::fundamental_frequency(p, dt)
+          == Approx(0.5 / T).epsilon(2e-3));
+    // An odd count of cycles: the largest even count is taken
+    std::vector<double> b_odd(b.begin(), b.end() - 1);
+    CHECK(fsai::voice::subharmonic_ratio(p, dt, b_odd)
+          == Approx(0.3 / 1.8).epsilon(1e-3));
+    // Too few cycles (fewer than four): no ratio
+    CHECK(std::isnan(fsai::voice::subharmonic_ratio(
+        p, dt, std::vector<double>(b.begin(), b.begin() + 4))));
   }
   SECTION("white noise at HNR 10 dB")
   {

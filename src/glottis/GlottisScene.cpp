@@ -31,9 +31,10 @@ void fsai::glottis::GlottisSceneParameters::bind(fsai::common::Parameters& p)
                "flow model: fe (ALE Navier-Stokes) or bernoulli "
                "(quasi-steady 1D)");
   p.add_choice("fold", fold, {"2dof", "static", "elastic"},
-               "vocal-fold model: 2dof, static (the 2-DOF profile held "
-               "at h = --vf.h0: steady glottal flow) or elastic (plane-"
-               "strain FE fold, --elastic.*)");
+               std::string("vocal-fold model: 2dof, static (the 2-DOF profile "
+                           "held at h = --vf.h0: steady glottal flow) or "
+                           "elastic (plane-strain FE fold, --elastic.*)")
+                   + elastic_fe_defaults_help);
   p.add("ramp", ramp,
         "--fold elastic --flow bernoulli: p_sub ramps up smoothly over "
         "this time (--flow fe: --fe.ramp) [s]");

@@ -27,8 +27,10 @@ void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
                "sound: fe (wave equation on the planar tract and radiation "
                "region) or 1d (the vowel's tract as a transmission line)");
   p.add_choice("fold", fold, {"2dof", "elastic"},
-               "vocal fold: 2dof (rigid, two modes) or elastic (plane-strain "
-               "FE fold, --elastic.*)");
+               std::string("vocal fold: 2dof (rigid, two modes) or elastic "
+                           "(plane-strain FE fold, --elastic.*)")
+                   + glottis::elastic_fe_defaults_help
+                   + " and the glottis scene's flow mesh");
   p.add("ramp", ramp,
         "--fold elastic --flow bernoulli: p_sub ramps up over this time [s]");
   p.add_choice("vowel", vowel, {"u", "a", "i"},
@@ -184,9 +186,9 @@ void fsai::voice::VoiceScene::validate(const fsai::common::Parameters& p)
     // mesh of its validation (docs/glottis.md), not on the voice's 0.035 mm
     // mesh (set above for the 2-DOF fold's forces), which costs the elastic
     // voice 1.6x the time; --quick keeps its coarse mesh
-    const glottis::FlowGlottisSetup scene;
     if (!voice.quick)
     {
+      const glottis::FlowGlottisSetup scene;
       p.set_unless_given("fe.h_gap", glottis.fe.sizes.h_gap,
                          scene.fe.sizes.h_gap);
       p.set_unless_given("fe.h_far", glottis.fe.sizes.h_far,
@@ -432,13 +434,14 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
   fsai::log::info("voice: f0 {:.2f} Hz, jitter {:.3f} %, shimmer {:.3f} %, "
                   "HNR {:.1f} dB; flow peak {:.3f} l/s, mean {:.3f} l/s, OQ "
                   "{:.3f}, SQ {:.2f}, MFDR {:.0f} l/s², NAQ {:.3f}; H1-H2 "
-                  "{:.1f} dB, SPL {:.1f} dB at {:.2f} m; formants ({}) "
+                  "{:.1f} dB, subharmonic ratio {:.2f} (flow {:.2f}), SPL "
+                  "{:.1f} dB at {:.2f} m; formants ({}) "
                   "{::.0f} Hz, bandwidths {::.0f} Hz",
                   fm.f0_hz, fm.jitter_pct, sm.shimmer_pct, sm.hnr_db,
                   1e3 * fm.q_peak, 1e3 * fm.q_mean, fm.open_quotient,
-                  fm.speed_quotient, 1e3 * fm.mfdr, fm.naq, sm.h1_h2_db,
-                  sm.spl_db, vp.mic_distance, sm.formant_method, sm.formants_hz,
-                  sm.bandwidths_hz);
+                  fm.speed_quotient, 1e3 * fm.mfdr, fm.naq, sm.h1_h2_db, sm.shr,
+                  fm.shr, sm.spl_db, vp.mic_distance, sm.formant_method,
+                  sm.formants_hz, sm.bandwidths_hz);
   auto errors = [&](const std::vector<double>& ref)
   {
     std::vector<double> e;
@@ -457,6 +460,13 @@ fsai::voice::VoiceMeasures fsai::voice::analyse_voice(
       cs.closes_every_cycle ? "yes" : "no", f0,
       100 * (f0 - cs.f0_hz) / cs.f0_hz, spl, 100 * periodic_fraction, formants,
       formants_window, tract.formants, tract.domain_formants);
+  // Period doubling: cycles alternating long/short or strong/weak repeat
+  // every two glottal cycles, and so does the sound (A10)
+  if (std::abs(2 * f0 - cs.f0_hz) < 0.03 * cs.f0_hz)
+    fsai::log::warn("the sound repeats every two glottal cycles (f0 {:.2f} Hz "
+                    "= {:.2f} Hz / 2: period doubling; subharmonic ratio "
+                    "{:.2f}, of the glottal flow {:.2f})",
+                    f0, cs.f0_hz, sm.shr, fm.shr);
 
   // Spectrum of the sound (Hann window) for the chart
   {

@@ -34,7 +34,53 @@ double crossing(const std::vector<double>& x, double dt, std::size_t i,
   const double d = x[i + 1] - x[i];
   return dt * (double(i) + (d != 0 ? (c - x[i]) / d : 0.0));
 }
+
+/// The component of x at `bins` cycles per window [t0, t0 + L], the
+/// window Hann-weighted: for a signal periodic in the window's length the
+/// components at other whole bins, two or more bins away, vanish
+std::complex<double> hann_component(const std::vector<double>& x, double dt,
+                                    double t0, double L, double bins)
+{
+  std::complex<double> c = 0;
+  const std::size_t i0 = std::size_t(std::ceil(t0 / dt));
+  for (std::size_t i = i0; i < x.size() and dt * double(i) <= t0 + L; ++i)
+  {
+    const double s = (dt * double(i) - t0) / L;
+    const double w = 0.5 - 0.5 * std::cos(2 * M_PI * s);
+    c += w * x[i] * std::polar(1.0, -2 * M_PI * bins * s);
+  }
+  return c;
+}
 } // namespace
+
+//-----------------------------------------------------------------------------
+double fsai::voice::subharmonic_ratio(const std::vector<double>& x, double dt,
+                                      const std::vector<double>& boundaries,
+                                      double f_max)
+{
+  fsai::require_positive("sampling interval", dt);
+  fsai::require_positive("subharmonic ratio: f_max", f_max);
+  const double t_end = dt * double(x.size() - 1);
+  std::size_t n = 0; // boundaries within x
+  while (n < boundaries.size() and boundaries[n] <= t_end)
+    ++n;
+  // An even number 2M of whole cycles, M >= 2: the subharmonics
+  // (k − ½) 2M bins lie M bins from the harmonics k 2M, outside the Hann
+  // window's main lobe
+  const std::size_t M = n > 0 ? (n - 1) / 2 : 0;
+  if (M < 2)
+    return NAN;
+  const double t0 = boundaries.front(), L = boundaries[2 * M] - t0;
+  const double f_pulse = double(2 * M) / L;
+  double harmonics = 0, subharmonics = 0;
+  for (int k = 1; k == 1 or k * f_pulse <= f_max; ++k)
+  {
+    harmonics += std::abs(hann_component(x, dt, t0, L, double(2 * M * k)));
+    subharmonics
+        += std::abs(hann_component(x, dt, t0, L, double(2 * M * k - M)));
+  }
+  return harmonics > 0 ? subharmonics / harmonics : NAN;
+}
 
 //-----------------------------------------------------------------------------
 fsai::voice::GlottalFlowMeasures
@@ -146,6 +192,7 @@ fsai::voice::glottal_flow_measures(const std::vector<double>& Q, double dt)
   out.speed_quotient = opening.empty() ? NAN : sq;
   out.mfdr = mean(mfdr);
   out.naq = out.q_ac / (out.mfdr * T0);
+  out.shr = subharmonic_ratio(Q, dt, out.boundaries);
   return out;
 }
 //-----------------------------------------------------------------------------
@@ -209,18 +256,12 @@ fsai::voice::sound_measures(const std::vector<double>& p, double dt,
   // 2 f0 (integer cycles: the other harmonics fall on the window's zeros)
   {
     const double t0 = b.front(), L = b.back() - b.front();
-    std::complex<double> h1 = 0, h2 = 0;
-    const std::size_t i0 = std::size_t(std::ceil(t0 / dt));
-    for (std::size_t i = i0; i < p.size() and dt * double(i) <= b.back(); ++i)
-    {
-      const double s = (dt * double(i) - t0) / L;
-      const double w = 0.5 - 0.5 * std::cos(2 * M_PI * s);
-      const double ph = 2 * M_PI * double(N) * s;
-      h1 += w * p[i] * std::polar(1.0, -ph);
-      h2 += w * p[i] * std::polar(1.0, -2 * ph);
-    }
-    out.h1_h2_db = 20 * std::log10(std::abs(h1) / std::abs(h2));
+    out.h1_h2_db
+        = 20
+          * std::log10(std::abs(hann_component(p, dt, t0, L, double(N)))
+                       / std::abs(hann_component(p, dt, t0, L, double(2 * N))));
   }
+  out.shr = subharmonic_ratio(p, dt, b);
   // Formants: closed-phase covariance LPC, or LPC of the periodic part
   // repeated (A8)
   std::vector<std::array<double, 2>> free_decay;
@@ -279,6 +320,8 @@ nlohmann::json fsai::voice::voice_json(const GlottalFlowMeasures& f,
           {"mfdr_ls2", num(1e3 * f.mfdr)},
           {"naq", num(f.naq)},
           {"h1_h2_db", num(s.h1_h2_db)},
+          {"shr", num(s.shr)},
+          {"shr_flow", num(f.shr)},
           {"spl_db", num(s.spl_db)},
           {"mic_distance_m", mic_distance},
           {"formants_hz", s.formants_hz},

@@ -17,7 +17,8 @@
 //    the harmonic energy H = (N S − E/N)/(N − 1) (S the energy of the mean
 //    cycle, E/N that of a cycle on average), the noise E/N − H, unbiased
 //    for white noise; H1–H2 from the amplitudes at f0
-//    and 2 f0 of the Hann-windowed whole cycles; SPL re 20 µPa; formants and
+//    and 2 f0 of the Hann-windowed whole cycles; SPL re 20 µPa;
+//    the subharmonic ratio (of the sound and of the flow, below); formants and
 //    bandwidths by closed-phase covariance LPC over the closed phases
 //    (Q within 2 % of the window's AC amplitude above Q_min, at least
 //    0.5 ms; sound.h, closed_phase_resonances), shifted by the sound's
@@ -42,6 +43,7 @@ struct GlottalFlowMeasures
   double open_quotient = NAN, closed_quotient = NAN, speed_quotient = NAN;
   double mfdr = NAN; ///< [m³/s²]
   double naq = NAN;
+  double shr = NAN; ///< the flow's subharmonic ratio (subharmonic_ratio)
   /// Start time of each cycle (the mid-level crossings, from the window's
   /// first sample), cycles + 1 entries
   std::vector<double> boundaries;
@@ -56,6 +58,7 @@ GlottalFlowMeasures glottal_flow_measures(const std::vector<double>& Q,
 struct SoundMeasures
 {
   double shimmer_pct = NAN, hnr_db = NAN, h1_h2_db = NAN, spl_db = NAN;
+  double shr = NAN; ///< subharmonic ratio over the flow's cycles
   std::vector<double> formants_hz, bandwidths_hz;
   std::string formant_method; ///< "closed-phase" or "periodic-part"
 };
@@ -68,6 +71,18 @@ SoundMeasures sound_measures(const std::vector<double>& p, double dt,
                              const std::vector<std::array<double, 2>>& closed
                              = {},
                              double delay = 0.0);
+
+/// Subharmonic-to-harmonic ratio (Sun 2002) of x (sampled every dt from
+/// t = 0) over the largest even number 2M of the whole cycles
+/// `boundaries` (times; M >= 2, else NaN): SHR = Σ_k |X((k − ½) f_p)| /
+/// Σ_k |X(k f_p)| for the harmonics k f_p ≤ f_max of the pulse rate f_p =
+/// 2M / window, X the Hann-weighted window's components. 0 for cycles that
+/// repeat; a cycle that alternates (period doubling: long/short,
+/// strong/weak) puts energy at the half-integer multiples of f_p, where an
+/// f0 estimator then finds f_p / 2 (docs/model.md A10)
+double subharmonic_ratio(const std::vector<double>& x, double dt,
+                         const std::vector<double>& boundaries,
+                         double f_max = 1000.0);
 
 /// The summary's "voice" object (l/s² for the MFDR)
 nlohmann::json voice_json(const GlottalFlowMeasures& flow,
