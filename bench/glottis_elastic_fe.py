@@ -33,7 +33,9 @@ With --subharmonics, do the cycles alternate for good? The subharmonic
 ratio of the glottal flow (docs/model.md A10) over the cycles in 50 ms
 windows of the 400, 800 and 1200 Pa runs, and of the same fold under the
 Bernoulli flow at 800 Pa (0.2 s, serially; started if missing), there
-also with p_sub ramped up over 30 ms instead of 5 ms: the fold's lowest
+also with p_sub ramped up over 30 ms instead of 5 ms, and with the fold's
+damping ratio 0.01 or 0.02 at 66.9 and 100 Hz (Rayleigh) instead of 0.01
+at 100 Hz (stiffness-proportional: 0.0067 at 66.9 Hz): the fold's lowest
 in-vacuo mode (66.9 Hz, clamped ends) lies at half the pulse rate
 (glottis_elastic_fe_subharmonics.csv).
 
@@ -136,14 +138,18 @@ if "--scheme" in sys.argv:
 if "--subharmonics" in sys.argv:
     windows = [(0.05, 0.1), (0.1, 0.15), (0.15, 0.2)]
     runs = [(f"FE flow, {p} Pa", f"run_glottis_elastic_fe_p{p}") for p in (400, 800, 1200)]
-    for ramp in ("", "0.03"):
-        folder = "run_glottis_elastic_bernoulli_p800" + (f"_ramp{ramp}" if ramp else "")
+    for name, tag, opts in [
+            ("ramp 5 ms", "", []), ("ramp 30 ms", "_ramp0.03", ["--ramp", "0.03"]),
+            ("ζ 0.01 at 66.9 Hz", "_zeta0.01", ["--elastic.zeta", "0.01",
+                                                "--elastic.f_zeta_low", "66.9"]),
+            ("ζ 0.02 at 66.9 Hz", "_zeta0.02", ["--elastic.zeta", "0.02",
+                                                "--elastic.f_zeta_low", "66.9"])]:
+        folder = "run_glottis_elastic_bernoulli_p800" + tag
         if "--cached" not in sys.argv:
             timed_run([exe, "--flow", "bernoulli", "--fold", "elastic", "--elastic.clamped_ends",
                        "--p-sub", "800", "--duration", "0.2", "--output",
-                       os.path.join(out, folder)] + (["--ramp", ramp] if ramp else []),
-                      os.path.join(out, folder))
-        runs.append((f"Bernoulli flow, 800 Pa, ramp {1e3 * float(ramp or 5e-3):.0f} ms", folder))
+                       os.path.join(out, folder)] + opts, os.path.join(out, folder))
+        runs.append((f"Bernoulli flow, 800 Pa, {name}", folder))
     hrows = []
     for name, folder in runs:
         path = os.path.join(out, folder, "series.csv")
