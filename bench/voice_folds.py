@@ -31,7 +31,7 @@ ap = argparse.ArgumentParser()
 ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
 ap.add_argument("--p_sub", default="800")
 ap.add_argument("--vowel", default="u")
-ap.add_argument("--duration", default="0.3")
+ap.add_argument("--duration", default=None, help="0.3 (Bernoulli flow), 0.1 (FE flow)")
 ap.add_argument("--acoustics", default="1d,fe",
                 help="the sound's fidelities (fsai_demo --acoustics)")
 ap.add_argument("--flow", default="bernoulli", choices=["bernoulli", "fe"])
@@ -40,10 +40,9 @@ ap.add_argument("--rerun", action="store_true")
 args = ap.parse_args()
 fe_flow = args.flow == "fe"
 default_duration = "0.1" if fe_flow else "0.3"
+args.duration = args.duration or default_duration
 if fe_flow:
     args.acoustics = "fe"
-    if args.duration == "0.3":
-        args.duration = default_duration
 exe = os.path.join(args.build, "demos", "fsai_demo")
 out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
