@@ -60,6 +60,8 @@ double fsai::voice::subharmonic_ratio(const std::vector<double>& x, double dt,
 {
   fsai::require_positive("sampling interval", dt);
   fsai::require_positive("subharmonic ratio: f_max", f_max);
+  if (x.size() < 2)
+    return NAN;
   const double t_end = dt * double(x.size() - 1);
   std::size_t n = 0; // boundaries within x
   while (n < boundaries.size() and boundaries[n] <= t_end)
