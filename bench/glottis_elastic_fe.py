@@ -43,8 +43,14 @@ With --deeper, the 1200 Pa run with step cuts down to Δt/16
 (--fe.step_cuts 4) instead of Δt/4: does cutting further avoid the
 unconverged steps at reopening? (It stops at 176.8 ms: docs/glottis.md.)
 
+With --history, the 1200, 800 and 400 Pa runs and the 800 Pa check with
+--fe.cut_history keep (the former default): the halves of a discarded attempt reuse the secant
+columns of that attempt and the 8 steps before it instead of starting
+IQN-ILS afresh (E13b). Against the default runs: is that what left steps
+unconverged at reopening?
+
 usage: bench/glottis_elastic_fe.py [--check] [--scheme] [--cuts] [--subharmonics] [--deeper]
-                                   [--cached] [BUILD_DIR]
+                                   [--history] [--cached] [BUILD_DIR]
 (--cached: tables from the runs already in bench/results, none started)
 """
 import json
@@ -64,6 +70,9 @@ out = results_dir()
 common = ["--config", os.path.join(here, "..", "demos", "glottis", "elastic_fe.toml"),
           "--duration", "0.2"]
 cases = [(f"p{p}", 2, ["--p-sub", str(p)]) for p in (800, 1200, 400)]
+# The runs made before the halves of a cut step started IQN-ILS afresh
+# (E13b) reuse its columns, as they did then
+keep = ["--fe.cut_history", "keep"]
 check = [("p800_dt1e-5", 2, ["--p-sub", "800", "--dt", "1e-5"]),
          ("p800_h0.035", 2, ["--p-sub", "800", "--fe.h_gap", "0.035e-3"])]
 # The runs that led to the preset's fold step and τ_m (0.1 s at 800 Pa,
@@ -80,19 +89,23 @@ for name, opts, steps in [("cuts2", newmark + follow, ("2e-5", "1e-5", "5e-6")),
         dt = step.split("-tau")[0]
         label = f"p800_{name}" + (f"_dt{dt}" if dt != "2e-5" else "") + \
             ("_tau2e-5" if step.endswith("-tau") else "")
-        cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt] + opts))
+        cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt] + opts + keep))
 # The porous ramp's floor χ_0 = 0.01 ρ/(σ_P Δt) changes with Δt (G4): Δt 2e-5
 # with the floor of Δt 1e-5, against the Δt 1e-5 run
 # (it fails), and Δt 1e-5 with the floor of Δt 2e-5, against the Δt 2e-5 run
 for label, dt, floor in [("p800_cuts2_floor1e-5", "2e-5", "1e-5"),
                          ("p800_cuts2_dt1e-5_floor2e-5", "1e-5", "2e-5")]:
     cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt,
-                            "--closure.porous_floor_dt", floor] + newmark + follow))
+                            "--closure.porous_floor_dt", floor] + newmark + follow + keep))
 cuts_mode = "--cuts" in sys.argv
-suffix = "_cuts" if cuts_mode else "_deeper" if "--deeper" in sys.argv else ""
+suffix = ("_cuts" if cuts_mode else "_deeper" if "--deeper" in sys.argv
+          else "_history" if "--history" in sys.argv else "")
+history_mode = "--history" in sys.argv
+if history_mode:
+    check = [(label + "_keep", ranks, opts + keep) for label, ranks, opts in check]
 # Each run's reference in the check table: with --check the 0.2 s run at
 # 800 Pa, with --cuts its Δt partner (a run without one is its own)
-partners = {c[0]: "p800" for c in check} if not cuts_mode else {"p800_cuts2_dt1e-5": "p800_cuts2",
+partners = {c[0]: "p800" + ("_keep" if history_mode else "") for c in check} if not cuts_mode else {"p800_cuts2_dt1e-5": "p800_cuts2",
             "p800_cuts2_dt5e-6": "p800_cuts2_dt1e-5",
             "p800_cuts2_dt1e-5_tau2e-5": "p800_cuts2_dt1e-5",
             "p800_alpha0.8_cuts2_dt1e-5_tau2e-5": "p800_alpha0.8_cuts2_dt1e-5",
@@ -102,7 +115,9 @@ partners = {c[0]: "p800" for c in check} if not cuts_mode else {"p800_cuts2_dt1e
 if "--check" in sys.argv:
     cases = check + cases
 if "--deeper" in sys.argv:
-    cases = [("p1200_cuts4", 2, ["--p-sub", "1200", "--fe.step_cuts", "4"])]
+    cases = [("p1200_cuts4", 2, ["--p-sub", "1200", "--fe.step_cuts", "4"] + keep)]
+if history_mode:
+    cases = check + [(f"p{p}_keep", 2, ["--p-sub", str(p)] + keep) for p in (1200, 800, 400)]
 if cuts_mode:
     cases = cuts
 
@@ -138,8 +153,20 @@ if "--scheme" in sys.argv:
 if "--subharmonics" in sys.argv:
     windows = [(0.05, 0.1), (0.1, 0.15), (0.15, 0.2), (0.2, 0.25), (0.25, 0.3)]
     runs = [(f"FE flow, {p} Pa", f"run_glottis_elastic_fe_p{p}") for p in (400, 800, 1200)]
-    # the elastic voice's 0.3 s run (bench/voice_folds.py --flow fe --folds elastic --duration 0.3)
-    runs.append(("FE flow in the voice, 800 Pa, 0.3 s", "run_folds_elastic_800_fe_flowfe_0.3s"))
+    # a numerical artefact would move under refinement: the --check runs;
+    # the unconverged steps' part: the --history runs
+    runs += [("FE flow, 800 Pa, Δt 1e-5", "run_glottis_elastic_fe_p800_dt1e-5"),
+             ("FE flow, 800 Pa, h_gap 0.035 mm", "run_glottis_elastic_fe_p800_h0.035")]
+    runs += [(f"FE flow, {p} Pa, cut_history keep", f"run_glottis_elastic_fe_p{p}_keep")
+             for p in (400, 800, 1200)]
+    runs += [("FE flow, 800 Pa, Δt 1e-5, cut_history keep",
+              "run_glottis_elastic_fe_p800_dt1e-5_keep"),
+             ("FE flow, 800 Pa, h_gap 0.035 mm, cut_history keep",
+              "run_glottis_elastic_fe_p800_h0.035_keep")]
+    # the elastic voice's 0.3 s run (bench/voice_folds.py --flow fe --folds elastic
+    # --duration 0.3 --keep_cut_history)
+    runs.append(("FE flow in the voice, 800 Pa, 0.3 s, cut_history keep",
+                 "run_folds_elastic_800_fe_flowfe_0.3s"))
     for name, tag, opts in [
             ("ramp 5 ms", "", []), ("ramp 30 ms", "_ramp0.03", ["--ramp", "0.03"]),
             ("ζ 0.01 at 66.9 Hz", "_zeta0.01", ["--elastic.zeta", "0.01",
@@ -232,13 +259,14 @@ print_markdown_table([
     ("unconverged", lambda r: f"{r['coupling_unconverged_steps']}"),
     ("wall [s]", lambda r: f"{r['wall_s']:.0f}")], rows)
 
-if "--check" in sys.argv or cuts_mode:
+if "--check" in sys.argv or cuts_mode or history_mode:
     # The same window of each run: under --cuts the cycles that start after
     # 50 ms and end by 0.1 s; under --check, the settled cycles from 0.1 to
     # 0.2 s (the cycles alternate large/small, so the window needs many)
     t_from, t_to = (0.05, 0.1) if cuts_mode else (0.1, 0.2)
     check_rows = []
-    labels = [c[0] for c in cuts] if cuts_mode else ["p800"] + [c[0] for c in check]
+    labels = ([c[0] for c in cuts] if cuts_mode
+              else ["p800" + ("_keep" if history_mode else "")] + [c[0] for c in check])
     for label in labels:
         if not os.path.exists(os.path.join(out, f"run_glottis_elastic_fe_{label}", "summary.json")):
             continue  # failed or not run

@@ -12,11 +12,14 @@ With --flow fe, the full voice (FE flow, FE sound, 2 ranks, 0.1 s): each
 fold on the voice's defaults (`fsai_demo` and `fsai_demo --fold elastic`:
 the elastic fold on the glottis preset's settings and flow mesh). A
 duration other than the default goes into the run folders' names
-(_<duration>s); --folds picks the folds (2dof,elastic).
+(_<duration>s); --folds picks the folds (2dof,elastic). The committed
+elastic FE rows were run before the halves of a cut step started the
+coupling's IQN-ILS afresh (docs/model.md E13b): --keep_cut_history runs
+them as they were (--fe.cut_history keep).
 
 usage: bench/voice_folds.py [BUILD_DIR] [--p_sub 800] [--vowel u]
                             [--duration 0.3] [--acoustics 1d,fe]
-                            [--flow bernoulli|fe] [--rerun]
+                            [--flow bernoulli|fe] [--keep_cut_history] [--rerun]
 writes bench/results/voice_folds.csv (voice_folds_fe.csv); run folders
 bench/results/run_folds_<fold>_<p_sub>[_fe][_flowfe]/
 """
@@ -37,6 +40,8 @@ ap.add_argument("--acoustics", default="1d,fe",
 ap.add_argument("--flow", default="bernoulli", choices=["bernoulli", "fe"])
 ap.add_argument("--folds", default="2dof,elastic")
 ap.add_argument("--rerun", action="store_true")
+ap.add_argument("--keep_cut_history", action="store_true",
+                help="the elastic fold with --fe.cut_history keep (the committed FE-flow rows)")
 args = ap.parse_args()
 fe_flow = args.flow == "fe"
 default_duration = "0.1" if fe_flow else "0.3"
@@ -47,7 +52,8 @@ exe = os.path.join(args.build, "demos", "fsai_demo")
 out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
 # Clamped ends: given for the Bernoulli flow, the default in the FE flow
-folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]}
+folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]
+         + (["--fe.cut_history", "keep"] if args.keep_cut_history and fe_flow else [])}
 rows = []
 
 

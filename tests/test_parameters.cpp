@@ -94,6 +94,27 @@ TEST_CASE("Parameters tell which keys were given", "[common]")
   CHECK_THROWS(p.given("mesh.nope"));
 }
 
+TEST_CASE("A scene's presets set what was not given", "[common]")
+{
+  Demo d;
+  fsai::common::Parameters p("test", "test");
+  d.bind(p);
+  p.parse({"--mesh.h", "0.3"});
+  p.preset("mesh.h", "0.7"); // given: kept
+  p.preset("mesh.n", "9");
+  p.preset("run.flag", "true");
+  p.preset("run.model", "axisym");
+  CHECK(d.h == 0.3);
+  CHECK(d.n == 9);
+  CHECK(d.flag);
+  CHECK(d.model == "axisym");
+  // A preset that is not a value of its key is a programming error
+  CHECK_THROWS_AS(p.preset("run.model", "spherical"), std::logic_error);
+  CHECK_THROWS_AS(p.preset("mesh.n", "many"), std::logic_error);
+  CHECK_THROWS_AS(p.preset("mesh.nope", "1"), std::logic_error);
+  CHECK(d.model == "axisym");
+}
+
 TEST_CASE("Bad input raises one-line InputError", "[common]")
 {
   fsai::test::TempDir dir;

@@ -245,6 +245,18 @@ bool fsai::common::Parameters::given(const std::string& key) const
   return it->option->count() > 0 or _from_toml.count(key) > 0;
 }
 //-----------------------------------------------------------------------------
+void fsai::common::Parameters::preset(const std::string& key,
+                                      const std::string& text) const
+{
+  if (given(key)) // (throws for an unknown key)
+    return;
+  auto it = std::find_if(_entries.begin(), _entries.end(),
+                         [&key](const Entry& e) { return e.key == key; });
+  if (!it->assign({text}))
+    throw std::logic_error("Parameters::preset: '" + text
+                           + "' is not a value of '" + key + "'");
+}
+//-----------------------------------------------------------------------------
 nlohmann::json fsai::common::Parameters::to_json() const
 {
   nlohmann::json out = nlohmann::json::object();

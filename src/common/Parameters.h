@@ -59,6 +59,11 @@ public:
       value = preset;
   }
 
+  /// The value bound under `key` set from `text`, as it would be typed on
+  /// the command line, unless the key was given: a scene's presets kept as
+  /// one table of text that its --help can print as well
+  void preset(const std::string& key, const std::string& text) const;
+
   /// Path given by --config ("" if none)
   const std::string& config_file() const { return _config_file; }
 

@@ -333,6 +333,8 @@ bool fsai::glottis::ElasticFlowGlottis::attempt(double dt, bool may_retry,
               t, rep.iterations, rep.residual, dt);
     _channel->rewind();
     _fold.restore_state();
+    if (_par.cut_history == "clear")
+      _loop.clear_history();
     return false;
   }
   if (std::isnan(total.first_residual)) // the step's first accepted part

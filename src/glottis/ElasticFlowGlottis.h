@@ -51,8 +51,9 @@
 // coupling does not converge, or whose move inverts a cell, is discarded
 // and the step taken as two halves (each of which may be cut again, n
 // levels); the flow's BDF2 and mesh velocity follow the variable grid
-// (E19). Only the last level remeshes at an inverted cell or accepts an
-// unconverged step. The caller sees one step of Δt.
+// (E19), and after a coupling failure the halves start IQN-ILS afresh
+// (--fe.cut_history clear). Only the last level remeshes at an inverted
+// cell or accepts an unconverged step. The caller sees one step of Δt.
 #pragma once
 #include "ElasticFold.h"
 #include "FlowChannel.h"

@@ -60,6 +60,10 @@ void fsai::glottis::FlowGlottisParameters::bind(fsai::common::Parameters& p)
   p.add("fe.step_cuts", step_cuts,
         "elastic fold: a failed step (coupling not converged, a cell "
         "inverted) is taken as two halves, up to this many times in a row");
+  p.add_choice("fe.cut_history", cut_history, {"clear", "keep"},
+               "elastic fold, step cuts: the halves of a discarded attempt "
+               "start the coupling's IQN-ILS afresh (clear) or reuse the "
+               "columns of it and the steps before (keep)");
   p.add_choice("closure.lift", lift, {"uniform", "local"},
                "elastic fold: the fluid boundary lifted above g_min as a whole "
                "(uniform) or around the points below 2 g_min (local)");

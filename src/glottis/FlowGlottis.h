@@ -102,6 +102,12 @@ struct FlowGlottisParameters
   /// E13b); 0: never (an inverted cell remeshes, an unconverged step is
   /// accepted with a warning, as at the last level)
   int step_cuts = 0;
+  /// Elastic fold, step cuts: "clear": the halves of a discarded attempt
+  /// start IQN-ILS afresh (no reused columns, like a first step), since
+  /// the secant columns that led the attempt astray (a reopening after the
+  /// closed phase) would mislead them too; "keep": they reuse them (at
+  /// 1200 Pa, 50 steps unconverged at Δt/4 instead of 5: docs/glottis.md)
+  std::string cut_history = "clear";
   /// Elastic fold: how the fluid boundary is kept above g_min (G3).
   /// "uniform": the whole surface lifted by boundary_lift of its lowest
   /// point (tapered to the wall); "local": each surface point's own

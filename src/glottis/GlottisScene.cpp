@@ -11,6 +11,7 @@
 #include <io/RunSummary.h>
 #include <io/csv_columns.h>
 #include <limits>
+#include <utility>
 
 namespace
 {
@@ -34,7 +35,7 @@ void fsai::glottis::GlottisSceneParameters::bind(fsai::common::Parameters& p)
                std::string("vocal-fold model: 2dof, static (the 2-DOF profile "
                            "held at h = --vf.h0: steady glottal flow) or "
                            "elastic (plane-strain FE fold, --elastic.*)")
-                   + elastic_fe_defaults_help);
+                   + elastic_fe_defaults_help());
   p.add("ramp", ramp,
         "--fold elastic --flow bernoulli: p_sub ramps up smoothly over "
         "this time (--flow fe: --fe.ramp) [s]");
@@ -86,7 +87,7 @@ void fsai::glottis::GlottisScene::bind(fsai::common::Parameters& p)
 void fsai::glottis::GlottisScene::validate(const fsai::common::Parameters& p)
 {
   if (scene.fold == "elastic" and scene.flow == "fe")
-    apply_elastic_fe_defaults(p, setup, elastic);
+    apply_elastic_fe_defaults(p);
   scene.validate();
   // Each flow model has its own ramp option: refuse the other one, which
   // would be silently ignored
@@ -114,48 +115,67 @@ void fsai::glottis::GlottisScene::validate(const fsai::common::Parameters& p)
   }
 }
 //-----------------------------------------------------------------------------
-void fsai::glottis::apply_elastic_fe_defaults(const fsai::common::Parameters& p,
-                                              FlowGlottisSetup& setup,
-                                              ElasticFoldParameters& elastic)
+namespace
 {
-  auto& fe = setup.fe;
-  // A fold held only at its lateral attachment (plane strain) does not
-  // close every cycle at 800 Pa; held at its anterior and posterior ends
-  // it does
-  p.set_unless_given("elastic.clamped_ends", elastic.clamped_ends, true);
-  // In a nearly closed glottis the squeezed air film damps the surface so
-  // strongly that the trapezoidal rule rings from step to step and the
-  // coupling diverges in the closed phase; generalised-α (E18a) damps that
-  // ringing and stays second order (Newmark γ 0.6 damps it too but is
-  // first order: its Δt check misses)
-  p.set_unless_given("elastic.rho_inf", elastic.rho_inf, 0.8);
-  // The cell-wise porous switch makes the coupling's map discontinuous at
-  // closure (unconverged steps); the geometric ramp over 20 µm (about half
-  // a gap cell of this mesh) makes it continuous (G4)
-  p.set_unless_given("closure.porous_ramp", fe.porous_ramp, 2e-5);
-  // With the whole fold surface lifted above g_min by its lowest point's
-  // lift, the contact point's motion in the closed phase moves the whole
-  // fluid boundary and the coupling diverges (35 ms at 800 Pa); lifted
-  // only around the points below 2 g_min it passes
-  p.set_unless_given("closure.lift", fe.lift, "local");
-  // The soft fold shears the fluid mesh: the channel is meshed again
-  // around the fold (an open glottis), and at an inverted cell as a last
-  // resort (E13a)
-  p.set_unless_given("fe.remesh_quality", fe.remesh_quality, 0.1);
-  // (closure.wedge_angle keeps its default 30°: the fluid boundary is kept
-  // out of the wedge where the fold's superior surface meets the wall, G3a)
-  // A step whose coupling does not converge, or whose mesh move inverts a
-  // cell, is taken again as two (then four) shorter steps (E13b, on the
-  // variable-step BDF2 E19)
-  p.set_unless_given("fe.step_cuts", fe.step_cuts, 2);
-  // τ_m's transient term held at Δt 2e−5 (E20): a halved or cut step then
-  // changes the time discretisation only; with τ_m following Δt, halving
-  // Δt moves the peak flow by twice as much
-  p.set_unless_given("fluid.tau_step", setup.fluid.tau_step, 2e-5);
-  // IQN-ILS: 2–3 coupling iterations per step where Aitken takes 3–5 (with
-  // the porous ramp; without it IQN-ILS stalled at the first near-closure)
-  p.set_unless_given("coupling.method", setup.coupling.accelerator.method,
-                     "iqn-ils");
+/// apply_elastic_fe_defaults's settings, as typed on the command line
+const std::vector<std::pair<std::string, std::string>> elastic_fe_presets = {
+    // A fold held only at its lateral attachment (plane strain) does not
+    // close every cycle at 800 Pa; held at its anterior and posterior ends
+    // it does
+    {"elastic.clamped_ends", "true"},
+    // In a nearly closed glottis the squeezed air film damps the surface so
+    // strongly that the trapezoidal rule rings from step to step and the
+    // coupling diverges in the closed phase; generalised-α (E18a) damps
+    // that ringing and stays second order (Newmark γ 0.6 damps it too but
+    // is first order: its Δt check misses)
+    {"elastic.rho_inf", "0.8"},
+    // The cell-wise porous switch makes the coupling's map discontinuous at
+    // closure (unconverged steps); the geometric ramp over 20 µm (about
+    // half a gap cell of this mesh) makes it continuous (G4)
+    {"closure.porous_ramp", "2e-5"},
+    // With the whole fold surface lifted above g_min by its lowest point's
+    // lift, the contact point's motion in the closed phase moves the whole
+    // fluid boundary and the coupling diverges (35 ms at 800 Pa); lifted
+    // only around the points below 2 g_min it passes
+    {"closure.lift", "local"},
+    // The soft fold shears the fluid mesh: the channel is meshed again
+    // around the fold (an open glottis), and at an inverted cell as a last
+    // resort (E13a). (closure.wedge_angle keeps its default 30°: the fluid
+    // boundary is kept out of the wedge where the fold's superior surface
+    // meets the wall, G3a)
+    {"fe.remesh_quality", "0.1"},
+    // A step whose coupling does not converge, or whose mesh move inverts
+    // a cell, is taken again as two (then four) shorter steps (E13b, on the
+    // variable-step BDF2 E19)
+    {"fe.step_cuts", "2"},
+    // τ_m's transient term held at Δt 2e−5 (E20): a halved or cut step then
+    // changes the time discretisation only; with τ_m following Δt, halving
+    // Δt moves the peak flow by twice as much
+    {"fluid.tau_step", "2e-5"},
+    // IQN-ILS: 2–3 coupling iterations per step where Aitken takes 3–5
+    // (with the porous ramp; without it IQN-ILS stalled at the first
+    // near-closure)
+    {"coupling.method", "iqn-ils"},
+};
+} // namespace
+
+void fsai::glottis::apply_elastic_fe_defaults(const fsai::common::Parameters& p)
+{
+  for (const auto& [key, text] : elastic_fe_presets)
+    p.preset(key, text);
+}
+//-----------------------------------------------------------------------------
+std::string fsai::glottis::elastic_fe_defaults_help()
+{
+  std::string out
+      = "; with --flow fe the elastic fold's own defaults unless given:";
+  std::string sep = " --";
+  for (const auto& [key, text] : elastic_fe_presets)
+  {
+    out += sep + key + " " + text;
+    sep = ", --";
+  }
+  return out;
 }
 //-----------------------------------------------------------------------------
 fsai::glottis::BernoulliGlottisParameters

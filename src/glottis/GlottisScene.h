@@ -78,21 +78,16 @@ make_glottis(MPI_Comm comm, const FoldProfile& profile, const std::string& flow,
              const BernoulliGlottisParameters& bernoulli, double ramp,
              const std::string& coupling_csv, std::size_t rows_kept);
 
-/// What apply_elastic_fe_defaults puts in, for the options' help (the help
-/// lists each option's scene-wide default)
-inline constexpr const char* elastic_fe_defaults_help
-    = "; with --flow fe the elastic fold's own defaults unless given: "
-      "--elastic.clamped_ends, --elastic.rho_inf 0.8, --closure.porous_ramp "
-      "2e-5, --closure.lift local, --fe.remesh_quality 0.1, --fe.step_cuts 2, "
-      "--fluid.tau_step 2e-5, --coupling.method iqn-ils";
-
 /// The elastic fold in the FE flow (--fold elastic --flow fe) through
 /// closure: the settings its validation was run with (docs/glottis.md, "The
 /// elastic fold in the FE flow"), put in for every one of them not given
-/// on the command line or in the config file (fsai_glottis and fsai_demo)
-void apply_elastic_fe_defaults(const fsai::common::Parameters& p,
-                               FlowGlottisSetup& setup,
-                               ElasticFoldParameters& elastic);
+/// on the command line or in the config file (fsai_glottis and fsai_demo;
+/// the values bound in `p`)
+void apply_elastic_fe_defaults(const fsai::common::Parameters& p);
+
+/// Those settings for the options' help (which lists each option's
+/// scene-wide default): "; with --flow fe ... unless given: --key value, …"
+std::string elastic_fe_defaults_help();
 
 /// --onset_sweep: linear stability of the reduced model at each p_sub
 /// (printed and written to DIR/onset.csv)

@@ -29,7 +29,7 @@ void fsai::voice::VoiceParameters::bind(fsai::common::Parameters& p)
   p.add_choice("fold", fold, {"2dof", "elastic"},
                std::string("vocal fold: 2dof (rigid, two modes) or elastic "
                            "(plane-strain FE fold, --elastic.*)")
-                   + glottis::elastic_fe_defaults_help
+                   + glottis::elastic_fe_defaults_help()
                    + " and the glottis scene's flow mesh");
   p.add("ramp", ramp,
         "--fold elastic --flow bernoulli: p_sub ramps up over this time [s]");
@@ -181,7 +181,7 @@ void fsai::voice::VoiceScene::validate(const fsai::common::Parameters& p)
 {
   if (voice.fold == "elastic" and voice.flow == "fe")
   {
-    glottis::apply_elastic_fe_defaults(p, glottis, elastic);
+    glottis::apply_elastic_fe_defaults(p);
     // The elastic fold on the glottis scene's flow mesh and quadrature, the
     // mesh of its validation (docs/glottis.md), not on the voice's 0.035 mm
     // mesh (set above for the 2-DOF fold's forces), which costs the elastic
