@@ -210,9 +210,8 @@ void fsai::common::Parameters::apply_toml(const std::string& path)
         walk(v, key);
         continue;
       }
-      auto it = std::find_if(_entries.begin(), _entries.end(),
-                             [&key](const Entry& e) { return e.key == key; });
-      if (it == _entries.end())
+      const Entry* it = find(key);
+      if (!it)
         throw InputError(where + ": unknown parameter (see --help)");
       if (it->option->count() > 0)
         continue; // The command line wins
@@ -236,11 +235,18 @@ void fsai::common::Parameters::apply_toml(const std::string& path)
   walk(data, "");
 }
 //-----------------------------------------------------------------------------
-bool fsai::common::Parameters::given(const std::string& key) const
+const fsai::common::Parameters::Entry*
+fsai::common::Parameters::find(const std::string& key) const
 {
   auto it = std::find_if(_entries.begin(), _entries.end(),
                          [&key](const Entry& e) { return e.key == key; });
-  if (it == _entries.end())
+  return it == _entries.end() ? nullptr : &*it;
+}
+//-----------------------------------------------------------------------------
+bool fsai::common::Parameters::given(const std::string& key) const
+{
+  const Entry* it = find(key);
+  if (!it)
     throw std::logic_error("Parameters::given: no parameter '" + key + "'");
   return it->option->count() > 0 or _from_toml.count(key) > 0;
 }
@@ -250,9 +256,7 @@ void fsai::common::Parameters::preset(const std::string& key,
 {
   if (given(key)) // (throws for an unknown key)
     return;
-  auto it = std::find_if(_entries.begin(), _entries.end(),
-                         [&key](const Entry& e) { return e.key == key; });
-  if (!it->assign({text}))
+  if (!find(key)->assign({text}))
     throw std::logic_error("Parameters::preset: '" + text
                            + "' is not a value of '" + key + "'");
 }

@@ -88,6 +88,8 @@ private:
             std::function<bool(const std::vector<std::string>&)> assign,
             std::function<nlohmann::json()> to_json);
   void apply_toml(const std::string& path);
+  /// The entry bound under `key` (nullptr if none)
+  const Entry* find(const std::string& key) const;
 
   CLI::App _app;
   std::string _config_file;
