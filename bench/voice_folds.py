@@ -12,16 +12,18 @@ With --flow fe, the full voice (FE flow, FE sound, 2 ranks, 0.1 s): each
 fold on the voice's defaults (`fsai_demo` and `fsai_demo --fold elastic`:
 the elastic fold on the glottis preset's settings and flow mesh). A
 duration other than the default goes into the run folders' names
-(_<duration>s); --folds picks the folds (2dof,elastic). The committed
-elastic FE rows were run before the halves of a cut step started the
-coupling's IQN-ILS afresh (docs/model.md E13b): --keep_cut_history runs
-them as they were (--fe.cut_history keep).
+(_<duration>s); --folds picks the folds (2dof,elastic). --elastic_dt runs
+the elastic fold at another Δt than its preset's 1e-5 (the former 2e-5:
+_dt<Δt>), --keep_cut_history with the halves of a cut step reusing the
+coupling's IQN-ILS columns (--fe.cut_history keep, docs/model.md E13b, as
+the committed 0.2 and 0.3 s rows were run: _keep).
 
 usage: bench/voice_folds.py [BUILD_DIR] [--p_sub 800] [--vowel u]
                             [--duration 0.3] [--acoustics 1d,fe]
-                            [--flow bernoulli|fe] [--keep_cut_history] [--rerun]
+                            [--flow bernoulli|fe] [--elastic_dt DT] [--keep_cut_history]
+                            [--rerun]
 writes bench/results/voice_folds.csv (voice_folds_fe.csv); run folders
-bench/results/run_folds_<fold>_<p_sub>[_fe][_flowfe]/
+bench/results/run_folds_<fold>_<p_sub>[_fe][_flowfe][_<duration>s][_dt<Δt>][_keep]/
 """
 import argparse
 import csv
@@ -42,6 +44,8 @@ ap.add_argument("--folds", default="2dof,elastic")
 ap.add_argument("--rerun", action="store_true")
 ap.add_argument("--keep_cut_history", action="store_true",
                 help="the elastic fold with --fe.cut_history keep (the committed FE-flow rows)")
+ap.add_argument("--elastic_dt", default=None,
+                help="the elastic fold at this Δt instead of its preset's (the former 2e-5)")
 args = ap.parse_args()
 fe_flow = args.flow == "fe"
 default_duration = "0.1" if fe_flow else "0.3"
@@ -53,7 +57,8 @@ out = os.path.join(here, "results")
 os.makedirs(out, exist_ok=True)
 # Clamped ends: given for the Bernoulli flow, the default in the FE flow
 folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]
-         + (["--fe.cut_history", "keep"] if args.keep_cut_history and fe_flow else [])}
+         + (["--fe.cut_history", "keep"] if args.keep_cut_history and fe_flow else [])
+         + (["--dt", args.elastic_dt] if args.elastic_dt else [])}
 rows = []
 
 
@@ -68,7 +73,9 @@ for p, ac, fold in runs:
     opts = folds[fold]
     d = os.path.join(out, f"run_folds_{fold}_{p}" + ("" if ac == "1d" else f"_{ac}")
                      + ("_flowfe" if fe_flow else "")
-                     + ("" if args.duration == default_duration else f"_{args.duration}s"))
+                     + ("" if args.duration == default_duration else f"_{args.duration}s")
+                     + (f"_dt{args.elastic_dt}" if args.elastic_dt and fold == "elastic" else "")
+                     + ("_keep" if args.keep_cut_history and fold == "elastic" else ""))
     launch = ["mpirun", "-n", "2", exe] if fe_flow else [exe]
     s = timed_run(launch + ["--flow", args.flow, "--acoustics", ac,
                    "--vowel", args.vowel, "--p-sub", p,
@@ -94,7 +101,9 @@ for p, ac, fold in runs:
           f"F1/F2 {r['f1_hz']:.0f}/{r['f2_hz']:.0f} Hz, jitter {r['jitter_pct']:.2f} %, "
           f"wall {wall:.1f} s", flush=True)
 table = "voice_folds" + ("_fe" if fe_flow else "") \
-    + ("" if args.duration == default_duration else f"_{args.duration}s") + ".csv"
+    + ("" if args.duration == default_duration else f"_{args.duration}s") \
+    + (f"_dt{args.elastic_dt}" if args.elastic_dt else "") \
+    + ("_keep" if args.keep_cut_history else "") + ".csv"
 with open(os.path.join(out, table), "w",
           newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))

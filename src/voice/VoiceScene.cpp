@@ -181,7 +181,12 @@ void fsai::voice::VoiceScene::validate(const fsai::common::Parameters& p)
 {
   if (voice.fold == "elastic" and voice.flow == "fe")
   {
+    // --quick's coarse step (apply_quick) is kept: the quick look stays
+    // quick, and its mesh is not the one the preset's step was checked on
+    const double quick_dt = voice.dt;
     glottis::apply_elastic_fe_defaults(p);
+    if (voice.quick)
+      p.set_unless_given("dt", voice.dt, quick_dt);
     // The elastic fold on the glottis scene's flow mesh and quadrature, the
     // mesh of its validation (docs/glottis.md), not on the voice's 0.035 mm
     // mesh (set above for the 2-DOF fold's forces), which costs the elastic
