@@ -24,9 +24,9 @@ source "$(dirname "$0")/common.sh"
 # name | steps | kill at | options
 cases=(
   "bernoulli|500|250|--flow bernoulli --fold elastic --elastic.layers 2 --duration 0.01 --checkpoint-every 100 --write_every 30 --surface_every 10"
-  "fe|80|50|--flow fe --fold elastic --duration 0.0016 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --coupling.method iqn-ils --checkpoint-every 20 --write_every 15"
-  "fe_cuts|10|7|--flow fe --fold elastic --duration 0.0002 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --coupling.method iqn-ils --coupling.tol 1e-12 --coupling.max_iterations 3 --coupling.on_failure warn --fe.step_cuts 1 --checkpoint-every 5 --write_every 4"
-  "fe_remesh|10|7|--flow fe --fold elastic --duration 0.0002 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --glottis.rest_gap 0.3e-3 --fe.remesh_quality 0.99 --checkpoint-every 5 --write_every 3"
+  "fe|80|50|--flow fe --fold elastic --duration 0.0008 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --coupling.method iqn-ils --checkpoint-every 20 --write_every 15"
+  "fe_cuts|10|7|--flow fe --fold elastic --duration 0.0001 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --coupling.method iqn-ils --coupling.tol 1e-12 --coupling.max_iterations 3 --coupling.on_failure warn --fe.step_cuts 1 --checkpoint-every 5 --write_every 4"
+  "fe_remesh|10|7|--flow fe --fold elastic --duration 0.0001 --fe.h_far 1e-3 --fe.h_gap 0.1e-3 --fe.ramp 1e-3 --glottis.rest_gap 0.3e-3 --fe.remesh_quality 0.99 --checkpoint-every 5 --write_every 3"
 )
 for case in "${cases[@]}"; do
   IFS='|' read -r name steps kill opts <<<"$case"
