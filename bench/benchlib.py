@@ -106,8 +106,9 @@ def glottal_cycles(path, g_cross, t_start):
     t_start, for a fold that does not come near the axis); cycles that start
     before t_start [s] (the start-up) are left out. Per cycle: its start,
     f0 = 1/period, the largest and the mean flow, the open quotient (the
-    share of steps not flagged closed), the first harmonic of h and φ
-    (amplitudes, and φ's phase lead on h), and the largest half-gap."""
+    share of steps not flagged closed), the closings (steps flagged closed
+    after one that was not), the first harmonic of h and φ (amplitudes,
+    and φ's phase lead on h), and the largest half-gap."""
     if not os.path.exists(path):
         return []
     r = read_float_rows(path)
@@ -117,6 +118,7 @@ def glottal_cycles(path, g_cross, t_start):
         g = col["gap_m"][t > t_start]
         g_cross = (g.min() + g.max()) / 2
     up = [i for i in upward_crossings(col["gap_m"], g_cross) if t[i - 1] > t_start]
+    closed = col["closed"] > 0.5
     out = []
     for a, b in zip(up, up[1:]):
         s = slice(a, b + 1)  # both ends: the trapezoids cover the whole period
@@ -127,6 +129,7 @@ def glottal_cycles(path, g_cross, t_start):
         out.append({"t0_s": t[a], "f0_hz": 1 / T, "q_peak_ls": 1e3 * col["Q_m3s"][a:b].max(),
                     "q_mean_ls": 1e3 * np.trapz(col["Q_m3s"][s], ts) / T,
                     "open_quotient": 1 - col["closed"][a:b].mean(),
+                    "closings": int((closed[a + 1:b] & ~closed[a:b - 1]).sum()),
                     "h_amp_mm": 1e3 * abs(h1), "phi_amp_mrad": 1e3 * abs(p1),
                     # in [−90°, 270°): neither model's lead (≈ 20° FE,
                     # ≈ 165° Bernoulli) wraps around there

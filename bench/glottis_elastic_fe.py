@@ -104,9 +104,9 @@ for label, dt, floor in [("p800_cuts2_floor1e-5", "2e-5", "1e-5"),
     cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt,
                             "--closure.porous_floor_dt", floor] + newmark + follow + keep))
 cuts_mode = "--cuts" in sys.argv
-suffix = ("_cuts" if cuts_mode else "_deeper" if "--deeper" in sys.argv
-          else "_history" if "--history" in sys.argv else "")
 history_mode = "--history" in sys.argv
+suffix = ("_cuts" if cuts_mode else "_deeper" if "--deeper" in sys.argv
+          else "_history" if history_mode else "")
 if history_mode:
     check = [("p800_dt1e-5_keep", 2, ["--p-sub", "800", "--dt", "1e-5"] + keep),
              ("p800_h0.035_keep", 2, ["--p-sub", "800", "--fe.h_gap", "0.035e-3"]
@@ -235,15 +235,11 @@ def pair_sem(peaks):
 def settled_cycles(folder):
     """f0, mean cycle peak [l/s] and OQ over the whole cycles from 50 ms
     (the start-up left out), their count, and the closings within them"""
-    path = os.path.join(folder, "series.csv")
-    cyc = glottal_cycles(path, None, 0.05)
-    r = read_float_rows(path)
-    t, closed = (np.array([x[k] for x in r]) for k in ("t_s", "closed"))
-    c = closed[(t >= cyc[0]["t0_s"]) & (t < cyc[-1]["t0_s"] + 1 / cyc[-1]["f0_hz"])] > 0.5
+    cyc = glottal_cycles(os.path.join(folder, "series.csv"), None, 0.05)
     return {"cycles": len(cyc), "f0_cycles_hz": len(cyc) / sum(1 / x["f0_hz"] for x in cyc),
             "q_peak_cycles_ls": float(np.mean([x["q_peak_ls"] for x in cyc])),
             "oq_cycles": float(np.mean([x["open_quotient"] for x in cyc])),
-            "closings": int((c[1:] & ~c[:-1]).sum())}
+            "closings": sum(x["closings"] for x in cyc)}
 
 
 rows = []

@@ -59,6 +59,9 @@ os.makedirs(out, exist_ok=True)
 folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]
          + (["--fe.cut_history", "keep"] if args.keep_cut_history and fe_flow else [])
          + (["--dt", args.elastic_dt] if args.elastic_dt else [])}
+# The elastic fold's variant, in its run folders' and the table's names
+variant = (f"_dt{args.elastic_dt}" if args.elastic_dt else "") \
+    + ("_keep" if args.keep_cut_history else "")
 rows = []
 
 
@@ -74,8 +77,7 @@ for p, ac, fold in runs:
     d = os.path.join(out, f"run_folds_{fold}_{p}" + ("" if ac == "1d" else f"_{ac}")
                      + ("_flowfe" if fe_flow else "")
                      + ("" if args.duration == default_duration else f"_{args.duration}s")
-                     + (f"_dt{args.elastic_dt}" if args.elastic_dt and fold == "elastic" else "")
-                     + ("_keep" if args.keep_cut_history and fold == "elastic" else ""))
+                     + (variant if fold == "elastic" else ""))
     launch = ["mpirun", "-n", "2", exe] if fe_flow else [exe]
     s = timed_run(launch + ["--flow", args.flow, "--acoustics", ac,
                    "--vowel", args.vowel, "--p-sub", p,
@@ -101,9 +103,7 @@ for p, ac, fold in runs:
           f"F1/F2 {r['f1_hz']:.0f}/{r['f2_hz']:.0f} Hz, jitter {r['jitter_pct']:.2f} %, "
           f"wall {wall:.1f} s", flush=True)
 table = "voice_folds" + ("_fe" if fe_flow else "") \
-    + ("" if args.duration == default_duration else f"_{args.duration}s") \
-    + (f"_dt{args.elastic_dt}" if args.elastic_dt else "") \
-    + ("_keep" if args.keep_cut_history else "") + ".csv"
+    + ("" if args.duration == default_duration else f"_{args.duration}s") + variant + ".csv"
 with open(os.path.join(out, table), "w",
           newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
