@@ -1,19 +1,20 @@
 #!/usr/bin/python3
 """The elastic fold in the FE flow through closure: the preset
-demos/glottis/elastic_fe.toml (Δt 1e-5, clamped ends, porous ramp,
-generalised-α fold step, step cuts, τ_m's step held, local lift,
-remeshing, attachment wedges, IQN-ILS) for 0.2 s from rest at p_sub 400,
-800 and 1200 Pa, and the same at the former preset's Δt 2e-5 (1.8x
-cheaper); with --check, the 800 Pa run for 0.2 s at Δt 5e-6 and on the
-finer mesh (h_gap 0.035 mm), its settled cycles from 0.1 to 0.2 s (and
-those of the Δt 2e-5 run) compared with the 800 Pa run's over the same
-window (mean cycle peak with its standard error: the cycles alternate
-large/small).
+demos/glottis/elastic_fe.toml (Δt 1e-5, h_gap 0.025 mm, clamped ends,
+porous ramp, generalised-α fold step, step cuts, τ_m's step held, local
+lift, remeshing, attachment wedges, IQN-ILS) for 0.2 s from rest at p_sub
+400, 800 and 1200 Pa, and the same at the former preset's Δt 2e-5 on its
+gap cells (h_gap 0.05 mm); with --check, the mesh/Δt check at 800 Pa:
+the 0.2 s run on the gap cells h_gap 0.018, 0.035 and 0.05 mm against the
+preset's 0.025 mm, and on 0.05 mm at Δt 5e-6 and 2e-5 against Δt 1e-5;
+the settled cycles from 0.1 to 0.2 s of each (mean cycle peak with its
+standard error: the cycles alternate large/small).
 
-The runs go on 2 ranks, one at a time (about 20 min per 0.2 s); a run
-whose summary.json exists is not repeated. Writes
+The runs go on 2 ranks, one at a time (35-60 min per 0.2 s at Δt 1e-5);
+a run whose summary.json exists is not repeated. Writes
 bench/results/glottis_elastic_fe.csv (and glottis_elastic_fe_check.csv)
-and prints Markdown tables.
+and prints Markdown tables. The --scheme, --cuts, --deeper and --history
+runs were made on the former gap cells and give them (former_mesh).
 
 With --scheme, is the fold's step what the Δt check sees? The same fold
 (clamped ends) under the Bernoulli flow at 800 Pa, 0.2 s, serially, at
@@ -72,15 +73,21 @@ out = results_dir()
 common = ["--config", os.path.join(here, "..", "demos", "glottis", "elastic_fe.toml"),
           "--duration", "0.2"]
 cases = [(f"p{p}", 2, ["--p-sub", str(p)]) for p in (800, 1200, 400)]
-# The former preset's step: what Δt 2e-5 costs the cycle, and saves
+# The former preset's step and gap cells: what Δt 2e-5 and h_gap 0.05 mm
+# cost the cycle, and save (the runs below that give former_mesh were made
+# on it, as the preset then was)
 former_dt = ["--dt", "2e-5"]
-cases += [(f"p{p}_dt2e-5", 2, ["--p-sub", str(p)] + former_dt) for p in (800, 1200, 400)]
+former_mesh = ["--fe.h_gap", "0.05e-3"]
+cases += [(f"p{p}_dt2e-5_h0.05", 2, ["--p-sub", str(p)] + former_dt + former_mesh)
+          for p in (800, 1200, 400)]
 # The runs made before the halves of a cut step started IQN-ILS afresh
 # (E13b) reuse its columns, as they did then
 keep = ["--fe.cut_history", "keep"]
-check = [("p800_dt2e-5", 2, ["--p-sub", "800"] + former_dt),
-         ("p800_dt5e-6", 2, ["--p-sub", "800", "--dt", "5e-6"]),
-         ("p800_h0.035", 2, ["--p-sub", "800", "--fe.h_gap", "0.035e-3"])]
+check = [("p800_h0.018", 2, ["--p-sub", "800", "--fe.h_gap", "0.018e-3"]),
+         ("p800_h0.035", 2, ["--p-sub", "800", "--fe.h_gap", "0.035e-3"]),
+         ("p800_h0.05", 2, ["--p-sub", "800"] + former_mesh),
+         ("p800_dt5e-6_h0.05", 2, ["--p-sub", "800", "--dt", "5e-6"] + former_mesh),
+         ("p800_dt2e-5_h0.05", 2, ["--p-sub", "800"] + former_dt + former_mesh)]
 # The runs that led to the preset's fold step and τ_m (0.1 s at 800 Pa,
 # step cuts as in the preset): Newmark γ 0.6 (the former preset) or
 # generalised-α ρ∞ 0.8 (the preset's), τ_m following Δt or held at 2e-5
@@ -95,20 +102,22 @@ for name, opts, steps in [("cuts2", newmark + follow, ("2e-5", "1e-5", "5e-6")),
         dt = step.split("-tau")[0]
         label = f"p800_{name}" + (f"_dt{dt}" if dt != "2e-5" else "") + \
             ("_tau2e-5" if step.endswith("-tau") else "")
-        cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt] + opts + keep))
+        cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt] + opts + keep
+                     + former_mesh))
 # The porous ramp's floor χ_0 = 0.01 ρ/(σ_P Δt) changes with Δt (G4): Δt 2e-5
 # with the floor of Δt 1e-5, against the Δt 1e-5 run
 # (it fails), and Δt 1e-5 with the floor of Δt 2e-5, against the Δt 2e-5 run
 for label, dt, floor in [("p800_cuts2_floor1e-5", "2e-5", "1e-5"),
                          ("p800_cuts2_dt1e-5_floor2e-5", "1e-5", "2e-5")]:
     cuts.append((label, 2, ["--p-sub", "800", "--duration", "0.1", "--dt", dt,
-                            "--closure.porous_floor_dt", floor] + newmark + follow + keep))
+                            "--closure.porous_floor_dt", floor] + newmark + follow + keep
+                     + former_mesh))
 cuts_mode = "--cuts" in sys.argv
 history_mode = "--history" in sys.argv
 suffix = ("_cuts" if cuts_mode else "_deeper" if "--deeper" in sys.argv
           else "_history" if history_mode else "")
 if history_mode:
-    check = [("p800_dt1e-5_keep", 2, ["--p-sub", "800", "--dt", "1e-5"] + keep),
+    check = [("p800_dt1e-5_keep", 2, ["--p-sub", "800", "--dt", "1e-5"] + keep + former_mesh),
              ("p800_h0.035_keep", 2, ["--p-sub", "800", "--fe.h_gap", "0.035e-3"]
               + former_dt + keep)]
 # Each run's reference in the check table: with --check the 0.2 s run at
@@ -120,12 +129,16 @@ partners = {c[0]: "p800" + ("_keep" if history_mode else "") for c in check} if 
             "p800_alpha0.8_cuts2_dt1e-5": "p800_alpha0.8_cuts2",
             "p800_cuts2_floor1e-5": "p800_cuts2_dt1e-5",
             "p800_cuts2_dt1e-5_floor2e-5": "p800_cuts2"}
+# the three gap meshes at Δt 1e-5: each against the next coarser
+# the Δt check ran on the former gap cells: against the preset's step there
+partners.update({"p800_dt5e-6_h0.05": "p800_h0.05", "p800_dt2e-5_h0.05": "p800_h0.05"})
 if "--check" in sys.argv:
     cases = check + [c for c in cases if c[0] not in {x[0] for x in check}]
 if "--deeper" in sys.argv:
-    cases = [("p1200_cuts4", 2, ["--p-sub", "1200", "--fe.step_cuts", "4"] + former_dt + keep)]
+    cases = [("p1200_cuts4", 2, ["--p-sub", "1200", "--fe.step_cuts", "4"] + former_dt + keep
+              + former_mesh)]
 if history_mode:
-    cases = check + [(f"p{p}_keep", 2, ["--p-sub", str(p)] + former_dt + keep)
+    cases = check + [(f"p{p}_keep", 2, ["--p-sub", str(p)] + former_dt + keep + former_mesh)
                      for p in (1200, 800, 400)]
 if cuts_mode:
     cases = cuts
@@ -162,12 +175,14 @@ if "--scheme" in sys.argv:
 if "--subharmonics" in sys.argv:
     windows = [(0.05, 0.1), (0.1, 0.15), (0.15, 0.2), (0.2, 0.25), (0.25, 0.3)]
     runs = [(f"FE flow, {p} Pa", f"run_glottis_elastic_fe_p{p}") for p in (400, 800, 1200)]
-    runs += [(f"FE flow, {p} Pa, Δt 2e-5", f"run_glottis_elastic_fe_p{p}_dt2e-5")
+    runs += [(f"FE flow, {p} Pa, Δt 2e-5, h_gap 0.05 mm", f"run_glottis_elastic_fe_p{p}_dt2e-5_h0.05")
              for p in (400, 800, 1200)]
     # a numerical artefact would move under refinement: the --check runs;
     # the unconverged steps' part: the --history runs
-    runs += [("FE flow, 800 Pa, Δt 5e-6", "run_glottis_elastic_fe_p800_dt5e-6"),
-             ("FE flow, 800 Pa, h_gap 0.035 mm", "run_glottis_elastic_fe_p800_h0.035")]
+    runs += [("FE flow, 800 Pa, h_gap 0.018 mm", "run_glottis_elastic_fe_p800_h0.018"),
+             ("FE flow, 800 Pa, h_gap 0.035 mm", "run_glottis_elastic_fe_p800_h0.035"),
+             ("FE flow, 800 Pa, h_gap 0.05 mm", "run_glottis_elastic_fe_p800_h0.05"),
+             ("FE flow, 800 Pa, Δt 5e-6, h_gap 0.05 mm", "run_glottis_elastic_fe_p800_dt5e-6_h0.05")]
     runs += [(f"FE flow, {p} Pa, Δt 2e-5, cut_history keep", f"run_glottis_elastic_fe_p{p}_keep")
              for p in (400, 800, 1200)]
     runs += [("FE flow, 800 Pa, Δt 1e-5, cut_history keep",
@@ -175,9 +190,9 @@ if "--subharmonics" in sys.argv:
              ("FE flow, 800 Pa, Δt 2e-5, h_gap 0.035 mm, cut_history keep",
               "run_glottis_elastic_fe_p800_h0.035_keep")]
     # the elastic voice's 0.3 s run (bench/voice_folds.py --flow fe --folds elastic
-    # --duration 0.3 --elastic_dt 2e-5 --keep_cut_history)
+    # --duration 0.3 --elastic_dt 2e-5 --elastic_h_gap 0.05 --keep_cut_history)
     runs.append(("FE flow in the voice, 800 Pa, 0.3 s, cut_history keep",
-                 "run_folds_elastic_800_fe_flowfe_0.3s_dt2e-5_keep"))
+                 "run_folds_elastic_800_fe_flowfe_0.3s_dt2e-5_h0.05_keep"))
     for name, tag, opts in [
             ("ramp 5 ms", "", []), ("ramp 30 ms", "_ramp0.03", ["--ramp", "0.03"]),
             ("ζ 0.01 at 66.9 Hz", "_zeta0.01", ["--elastic.zeta", "0.01",

@@ -14,16 +14,18 @@ the elastic fold on the glottis preset's settings and flow mesh). A
 duration other than the default goes into the run folders' names
 (_<duration>s); --folds picks the folds (2dof,elastic). --elastic_dt runs
 the elastic fold at another Δt than its preset's 1e-5 (the former 2e-5:
-_dt<Δt>), --keep_cut_history with the halves of a cut step reusing the
+_dt<Δt>), --elastic_h_gap on another gap mesh than its preset's 0.025 mm
+(the former 0.05: _h<h_gap in mm>), --keep_cut_history with the halves of a cut step reusing the
 coupling's IQN-ILS columns (--fe.cut_history keep, docs/model.md E13b, as
-the committed 0.2 and 0.3 s rows were run: _keep).
+the committed 0.2 and 0.3 s rows were run, at Δt 2e-5 on 0.05 mm: _keep).
 
 usage: bench/voice_folds.py [BUILD_DIR] [--p_sub 800] [--vowel u]
                             [--duration 0.3] [--acoustics 1d,fe]
-                            [--flow bernoulli|fe] [--elastic_dt DT] [--keep_cut_history]
+                            [--flow bernoulli|fe] [--elastic_dt DT] [--elastic_h_gap MM]
+                            [--keep_cut_history]
                             [--rerun]
 writes bench/results/voice_folds.csv (voice_folds_fe.csv); run folders
-bench/results/run_folds_<fold>_<p_sub>[_fe][_flowfe][_<duration>s][_dt<Δt>][_keep]/
+bench/results/run_folds_<fold>_<p_sub>[_fe][_flowfe][_<duration>s][_dt<Δt>][_h<MM>][_keep]/
 """
 import argparse
 import csv
@@ -46,6 +48,8 @@ ap.add_argument("--keep_cut_history", action="store_true",
                 help="the elastic fold with --fe.cut_history keep (the committed FE-flow rows)")
 ap.add_argument("--elastic_dt", default=None,
                 help="the elastic fold at this Δt instead of its preset's (the former 2e-5)")
+ap.add_argument("--elastic_h_gap", default=None,
+                help="the elastic fold's gap cells [mm] instead of its preset's (the former 0.05)")
 args = ap.parse_args()
 fe_flow = args.flow == "fe"
 default_duration = "0.1" if fe_flow else "0.3"
@@ -58,9 +62,11 @@ os.makedirs(out, exist_ok=True)
 # Clamped ends: given for the Bernoulli flow, the default in the FE flow
 folds = {"2dof": [], "elastic": ["--fold", "elastic", "--elastic.clamped_ends"]
          + (["--fe.cut_history", "keep"] if args.keep_cut_history and fe_flow else [])
-         + (["--dt", args.elastic_dt] if args.elastic_dt else [])}
+         + (["--dt", args.elastic_dt] if args.elastic_dt else [])
+         + (["--fe.h_gap", f"{args.elastic_h_gap}e-3"] if args.elastic_h_gap else [])}
 # The elastic fold's variant, in its run folders' and the table's names
 variant = (f"_dt{args.elastic_dt}" if args.elastic_dt else "") \
+    + (f"_h{args.elastic_h_gap}" if args.elastic_h_gap else "") \
     + ("_keep" if args.keep_cut_history else "")
 rows = []
 

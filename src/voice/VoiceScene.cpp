@@ -181,21 +181,24 @@ void fsai::voice::VoiceScene::validate(const fsai::common::Parameters& p)
 {
   if (voice.fold == "elastic" and voice.flow == "fe")
   {
-    // --quick's coarse step (apply_quick) is kept: the quick look stays
-    // quick, and its mesh is not the one the preset's step was checked on
+    // --quick's coarse step and mesh (apply_quick) are kept: the quick look
+    // stays quick, and its mesh is not the one the preset was checked on
     const double quick_dt = voice.dt;
+    const double quick_h_gap = glottis.fe.sizes.h_gap;
     glottis::apply_elastic_fe_defaults(p);
     if (voice.quick)
+    {
       p.set_unless_given("dt", voice.dt, quick_dt);
-    // The elastic fold on the glottis scene's flow mesh and quadrature, the
-    // mesh of its validation (docs/glottis.md), not on the voice's 0.035 mm
-    // mesh (set above for the 2-DOF fold's forces), which costs the elastic
-    // voice 1.6x the time; --quick keeps its coarse mesh
-    if (!voice.quick)
+      p.set_unless_given("fe.h_gap", glottis.fe.sizes.h_gap, quick_h_gap);
+    }
+    // Otherwise the elastic fold's flow is that of its validation
+    // (docs/glottis.md): the preset's gap cells, with the glottis scene's
+    // far cells and quadrature; on the voice's own mesh (0.035 / 0.35 mm,
+    // degree 2, set above for the 2-DOF fold's forces) the elastic voice
+    // took 1.6x the time of the scene's 0.05 / 0.5 mm mesh
+    else
     {
       const glottis::FlowGlottisSetup scene;
-      p.set_unless_given("fe.h_gap", glottis.fe.sizes.h_gap,
-                         scene.fe.sizes.h_gap);
       p.set_unless_given("fe.h_far", glottis.fe.sizes.h_far,
                          scene.fe.sizes.h_far);
       p.set_unless_given("fluid.quadrature_degree",
