@@ -128,7 +128,7 @@ const std::vector<std::pair<std::string, std::string>> elastic_fe_presets = {
     // At 800 Pa the mean cycle peak rises as the gap cells shrink (h_gap
     // 0.05 → 0.035 → 0.025 mm: +8.7 %, +4.3 %) and settles at 0.025 mm
     // (0.018 mm: −1.5 %, f0 −0.08 %; docs/glottis.md, the mesh/Δt check);
-    // 26k flow unknowns, 1.2x the time of the 0.05 mm mesh's 16k
+    // 26k flow unknowns against 16k, 1.9x the time in the voice
     {"fe.h_gap", "0.025e-3"},
     // A fold held only at its lateral attachment (plane strain) does not
     // close every cycle at 800 Pa; held at its anterior and posterior ends
