@@ -69,6 +69,13 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
   p.add("fluid.pc_lag", pc_lag,
         "iterative solver: rebuild the preconditioner every pc_lag-th solve "
         "(1: every solve; the solve still meets ksp_rtol)");
+  p.add("fluid.refine_rtol", refine_rtol,
+        "direct solver: a step solved again (the coupling's next iterate) "
+        "refines the step's first factorisation to this residual relative "
+        "to |b| instead of factorising anew (0: factorise every solve)");
+  p.add("fluid.refine_max_its", refine_max_its,
+        "direct solver: refinement iterations before a fresh "
+        "factorisation");
   p.add_choice("fluid.assembly", assembly, {"coo", "dolfinx"},
                "matrix insertion: PETSc COO on a recorded pattern, or "
                "DOLFINx's per-cell MatSetValuesLocal (the same matrix to "
@@ -91,6 +98,10 @@ void fsai::fluid::FluidParameters::validate() const
   fsai::require(ksp_rtol > 0 and ksp_rtol < 1, "--fluid.ksp_rtol", "in (0, 1)",
                 ksp_rtol);
   fsai::require(pc_lag >= 1, "--fluid.pc_lag", ">= 1", pc_lag);
+  fsai::require(refine_rtol >= 0 and refine_rtol < 1, "--fluid.refine_rtol",
+                "in [0, 1)", refine_rtol);
+  fsai::require(refine_max_its >= 1, "--fluid.refine_max_its", ">= 1",
+                refine_max_its);
   fsai::require(quadrature_degree == 2 or quadrature_degree == 4,
                 "--fluid.quadrature_degree", "2 or 4", quadrature_degree);
 }
@@ -358,7 +369,7 @@ void fsai::fluid::FluidSolver::configure_blocks()
   _configure_blocks = false;
 }
 //-----------------------------------------------------------------------------
-int fsai::fluid::FluidSolver::solve()
+int fsai::fluid::FluidSolver::solve(bool repeat)
 {
   {
     common::ScopedTimer t("fluid: assemble");
@@ -402,22 +413,29 @@ int fsai::fluid::FluidSolver::solve()
       configure_blocks();
     la::petsc::Vector x(la::petsc::create_vector_wrap(*_up->x()), false);
     la::petsc::Vector bb(la::petsc::create_vector_wrap(b), false);
-    std::vector<double> guess; // kept for a repeated solve
-    if (reuse)
-      guess.assign(_up->x()->array().begin(), _up->x()->array().end());
-    _solver.solve(x.vec(), bb.vec());
-    KSPConvergedReason reason;
-    KSPGetConvergedReason(_solver.ksp(), &reason);
-    _solves_since_setup = reuse ? _solves_since_setup + 1 : 1;
-    if (reason < 0 and reuse)
+    KSPConvergedReason reason = KSP_CONVERGED_ITS;
+    const bool refined = repeat and refine(x.vec(), bb.vec());
+    if (repeat)
+      ++(refined ? _refined : _refine_fallbacks);
+    if (!refined)
     {
-      // Repeat from the same initial guess with a fresh preconditioner
-      std::copy(guess.begin(), guess.end(), _up->x()->mutable_array().begin());
-      KSPSetReusePreconditioner(_solver.ksp(), PETSC_FALSE);
-      _solver.set_operator(_A.mat());
+      std::vector<double> guess; // kept for a repeated solve
+      if (reuse)
+        guess.assign(_up->x()->array().begin(), _up->x()->array().end());
       _solver.solve(x.vec(), bb.vec());
       KSPGetConvergedReason(_solver.ksp(), &reason);
-      _solves_since_setup = 1;
+      _solves_since_setup = reuse ? _solves_since_setup + 1 : 1;
+      if (reason < 0 and reuse)
+      {
+        // Repeat from the same initial guess with a fresh preconditioner
+        std::copy(guess.begin(), guess.end(),
+                  _up->x()->mutable_array().begin());
+        KSPSetReusePreconditioner(_solver.ksp(), PETSC_FALSE);
+        _solver.set_operator(_A.mat());
+        _solver.solve(x.vec(), bb.vec());
+        KSPGetConvergedReason(_solver.ksp(), &reason);
+        _solves_since_setup = 1;
+      }
     }
     if (reason < 0)
     {
@@ -433,6 +451,31 @@ int fsai::fluid::FluidSolver::solve()
     throw std::runtime_error(
         fmt::format("fluid: velocity is not finite at t = {:.6g} s", _t));
   return 1;
+}
+//-----------------------------------------------------------------------------
+bool fsai::fluid::FluidSolver::refine(Vec x, Vec b)
+{
+  // Iterative refinement x ← x + (LU)⁻¹(b − A x) with the step's kept
+  // factorisation (of its first iterate's operator), from the last
+  // iterate's solution; the test is on the true residual |b − A x|
+  common::ScopedTimer t("fluid: refine");
+  KSP ksp = _solver.ksp();
+  KSPSetType(ksp, KSPRICHARDSON);
+  KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED);
+  KSPSetInitialGuessNonzero(ksp, PETSC_TRUE);
+  KSPSetTolerances(ksp, _par.refine_rtol, 0.0, 1e10, _par.refine_max_its);
+  KSPSetReusePreconditioner(ksp, PETSC_TRUE);
+  std::copy(_up_iterate.begin(), _up_iterate.end(),
+            _up->x()->mutable_array().begin());
+  KSPSolve(ksp, b, x);
+  KSPConvergedReason reason;
+  KSPGetConvergedReason(ksp, &reason);
+  // Back to the direct solve for the next fresh factorisation
+  KSPSetType(ksp, KSPPREONLY);
+  KSPSetNormType(ksp, KSP_NORM_NONE);
+  KSPSetInitialGuessNonzero(ksp, PETSC_FALSE);
+  KSPSetReusePreconditioner(ksp, PETSC_FALSE);
+  return reason > 0;
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidSolver::reset_history()
@@ -460,11 +503,21 @@ int fsai::fluid::FluidSolver::step()
                         _v_nn->x()->array(), r);
   }
   _t += dt;
+  // A step repeated from its saved state (the coupling's next iterate)
+  // refines its first solve's factorisation
+  const bool repeat = _par.solver == "direct" and _par.refine_rtol > 0
+                      and _restored and _saved_step_solves > 0;
+  _restored = false;
   int solves = 0;
   for (int k = 0; k < _par.picard; ++k)
   {
     std::vector<double> prev(_v->x()->array().begin(), _v->x()->array().end());
-    solves += solve();
+    solves += solve(repeat and k == 0);
+    if (k == 0)
+    {
+      ++_saved_step_solves;
+      _up_iterate.assign(_up->x()->array().begin(), _up->x()->array().end());
+    }
     if (_par.picard == 1)
       break;
     // Picard: convect with the new iterate
@@ -657,6 +710,8 @@ void fsai::fluid::FluidSolver::save_state()
   };
   _saved = {copy(_up),   copy(_v), copy(_p), copy(_v_n),
             copy(_v_nn), _t,       _dt_n,    _steps};
+  _saved_step_solves = 0;
+  _restored = false;
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidSolver::restore_state()
@@ -673,6 +728,7 @@ void fsai::fluid::FluidSolver::restore_state()
   _t = _saved.t;
   _dt_n = _saved.dt_n;
   _steps = _saved.steps;
+  _restored = true;
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidSolver::save(io::RankState& state,

@@ -75,6 +75,16 @@ struct FluidParameters
   /// as FGMRES's preconditioner was tried on the FE glottis scene: 5
   /// iterations per solve, 48 ms against 35 ms for a fresh MUMPS LU.)
   int pc_lag = 1;
+  /// "direct" (docs/model.md E20a): a step solved again from its saved
+  /// state (the coupling's next iterate: restore_state() between two
+  /// step() calls) refines the factorisation of the step's first solve
+  /// (KSPRICHARDSON from the last iterate's solution) until |b − A x| ≤
+  /// refine_rtol |b|, instead of factorising anew; after refine_max_its
+  /// refinements it factorises afresh. 0: factorise every solve. On the
+  /// elastic fold's FE glottis a refined solve took 16 ms against 45 ms
+  /// (bench/glottis_elastic_refine.py)
+  double refine_rtol = 1e-14;
+  int refine_max_its = 3;
   /// Matrix insertion: "coo" (PETSc's COO interface on the pattern recorded
   /// at setup: the element matrices are written in order and handed over
   /// in one call) or "dolfinx" (MatSetValuesLocal per cell). The same
@@ -164,6 +174,10 @@ public:
   /// iterations repeat a step)
   void save_state();
   void restore_state();
+  /// Repeated steps solved by refining the step's factorisation, and
+  /// those that fell back to a fresh one (FluidParameters::refine_rtol)
+  int refined_solves() const { return _refined; }
+  int refine_fallbacks() const { return _refine_fallbacks; }
   /// The accepted state (velocity and pressure, the BDF history, time and
   /// step count) into a checkpoint (entries prefix + "..."; fields by mesh
   /// node, io/field_state.h) and back from all the checkpoint's ranks
@@ -216,7 +230,21 @@ public:
   std::array<double, 2> cfl_and_cell_reynolds() const;
 
 private:
-  int solve(); // assemble and solve once with the current b; updates _up
+  /// Assemble and solve once with the current b; updates _up. `repeat`:
+  /// the step's operator differs from its first solve's by one coupling
+  /// iterate (refine_rtol)
+  int solve(bool repeat = false);
+  /// The repeated step's solve by iterative refinement with the kept
+  /// factorisation (false: it did not converge; _up is then undefined)
+  bool refine(Vec x, Vec b);
+  /// Solves of the saved step so far, whether restore_state() came since
+  /// the last step(), and the last solution of the saved step (the
+  /// refinement's initial guess)
+  int _saved_step_solves = 0;
+  bool _restored = false;
+  std::vector<double> _up_iterate;
+  /// Repeated-step solves refined / that fell back to a factorisation
+  int _refined = 0, _refine_fallbacks = 0;
   // Set-up steps of the constructor
   void create_spaces(std::shared_ptr<dolfinx::mesh::Mesh> mesh);
   void create_forms(std::shared_ptr<dolfinx::mesh::Mesh> mesh,

@@ -404,7 +404,10 @@ fsai::io::RankState fsai::glottis::ElasticFlowGlottis::save()
   p.insert(p.end(), _p_n.begin(), _p_n.end());
   p.insert(p.end(), _p_nn.begin(), _p_nn.end());
   state["glottis.p_history"] = p;
-  state["glottis.t_steps"] = {_t, double(_steps), double(_step_cuts)};
+  state["glottis.t_steps"]
+      = {_t, double(_steps), double(_step_cuts),
+         double(_refines_before[0] + _channel->flow().refined_solves()),
+         double(_refines_before[1] + _channel->flow().refine_fallbacks())};
   return state;
 }
 //-----------------------------------------------------------------------------
@@ -469,6 +472,10 @@ void fsai::glottis::ElasticFlowGlottis::load(
         _t = ts[0];
         _steps = int(ts[1]);
         _step_cuts = ts.size() > 2 ? int(ts[2]) : 0;
+        // (the loaded channel's flow starts its counts at 0)
+        _refines_before = ts.size() > 4
+                              ? std::array<int, 2>{int(ts[3]), int(ts[4])}
+                              : std::array<int, 2>{0, 0};
       });
 }
 //-----------------------------------------------------------------------------
@@ -550,6 +557,8 @@ void fsai::glottis::ElasticFlowGlottis::remesh()
   _p_order.clear();
   _channel = make_channel();
   const auto Q = _channel->transfer_from(*old);
+  _refines_before[0] += old->flow().refined_solves();
+  _refines_before[1] += old->flow().refine_fallbacks();
   old.reset();
   _quality = 1;
   // The coupling's secant history belongs to the old mesh's flow
@@ -566,4 +575,10 @@ void fsai::glottis::ElasticFlowGlottis::report(io::RunSummary& summary) const
   summary.set("remeshes", _remesh.count);
   summary.set("mesh_quality_min", _min_quality);
   summary.set("step_cuts", _step_cuts);
+  // Coupling iterates after a step's first: flow solves by refinement of
+  // the step's factorisation, and those that factorised afresh
+  summary.set("flow_refined_solves",
+              _refines_before[0] + _channel->flow().refined_solves());
+  summary.set("flow_refine_fallbacks",
+              _refines_before[1] + _channel->flow().refine_fallbacks());
 }

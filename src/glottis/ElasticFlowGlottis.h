@@ -60,6 +60,7 @@
 #include "FlowGlottis.h"
 #include "GlottisModel.h"
 #include "Sample.h"
+#include <array>
 #include <coupling/FixedPointCoupling.h>
 #include <map>
 #include <memory>
@@ -181,6 +182,9 @@ private:
   /// The sample of the accepted state (the step's coupling report `rep`)
   Sample sample(const coupling::StepReport& rep);
   int _step_cuts = 0; ///< attempts taken again as two halves
+  /// The flow's refined solves and refinement fallbacks on the meshes
+  /// before the current one (FluidParameters::refine_rtol)
+  std::array<int, 2> _refines_before{0, 0};
   /// The moved fold surface of the last move and of the accepted step
   std::vector<std::array<double, 2>> _x_moved, _x_accepted;
   int _steps = 0;
