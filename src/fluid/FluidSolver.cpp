@@ -505,17 +505,17 @@ int fsai::fluid::FluidSolver::step()
   _t += dt;
   // A step repeated from its saved state (the coupling's next iterate)
   // refines its first solve's factorisation
-  const bool repeat = _par.solver == "direct" and _par.refine_rtol > 0
-                      and _restored and _saved_step_solves > 0;
+  const bool refining = _par.solver == "direct" and _par.refine_rtol > 0;
+  const bool repeat = refining and _restored and _saved_step_solved;
   _restored = false;
   int solves = 0;
   for (int k = 0; k < _par.picard; ++k)
   {
     std::vector<double> prev(_v->x()->array().begin(), _v->x()->array().end());
     solves += solve(repeat and k == 0);
-    if (k == 0)
+    if (k == 0 and refining)
     {
-      ++_saved_step_solves;
+      _saved_step_solved = true;
       _up_iterate.assign(_up->x()->array().begin(), _up->x()->array().end());
     }
     if (_par.picard == 1)
@@ -710,7 +710,7 @@ void fsai::fluid::FluidSolver::save_state()
   };
   _saved = {copy(_up),   copy(_v), copy(_p), copy(_v_n),
             copy(_v_nn), _t,       _dt_n,    _steps};
-  _saved_step_solves = 0;
+  _saved_step_solved = false;
   _restored = false;
 }
 //-----------------------------------------------------------------------------

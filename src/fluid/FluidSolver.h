@@ -237,10 +237,10 @@ private:
   /// The repeated step's solve by iterative refinement with the kept
   /// factorisation (false: it did not converge; _up is then undefined)
   bool refine(Vec x, Vec b);
-  /// Solves of the saved step so far, whether restore_state() came since
-  /// the last step(), and the last solution of the saved step (the
-  /// refinement's initial guess)
-  int _saved_step_solves = 0;
+  /// Whether the saved step has been solved (with refinement on), whether
+  /// restore_state() came since the last step(), and the last solution of
+  /// the saved step (the refinement's initial guess)
+  bool _saved_step_solved = false;
   bool _restored = false;
   std::vector<double> _up_iterate;
   /// Repeated-step solves refined / that fell back to a factorisation

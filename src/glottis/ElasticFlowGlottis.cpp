@@ -405,9 +405,8 @@ fsai::io::RankState fsai::glottis::ElasticFlowGlottis::save()
   p.insert(p.end(), _p_nn.begin(), _p_nn.end());
   state["glottis.p_history"] = p;
   state["glottis.t_steps"]
-      = {_t, double(_steps), double(_step_cuts),
-         double(_refines_before[0] + _channel->flow().refined_solves()),
-         double(_refines_before[1] + _channel->flow().refine_fallbacks())};
+      = {_t, double(_steps), double(_step_cuts), double(refine_counts()[0]),
+         double(refine_counts()[1])};
   return state;
 }
 //-----------------------------------------------------------------------------
@@ -577,8 +576,12 @@ void fsai::glottis::ElasticFlowGlottis::report(io::RunSummary& summary) const
   summary.set("step_cuts", _step_cuts);
   // Coupling iterates after a step's first: flow solves by refinement of
   // the step's factorisation, and those that factorised afresh
-  summary.set("flow_refined_solves",
-              _refines_before[0] + _channel->flow().refined_solves());
-  summary.set("flow_refine_fallbacks",
-              _refines_before[1] + _channel->flow().refine_fallbacks());
+  summary.set("flow_refined_solves", refine_counts()[0]);
+  summary.set("flow_refine_fallbacks", refine_counts()[1]);
+}
+//-----------------------------------------------------------------------------
+std::array<int, 2> fsai::glottis::ElasticFlowGlottis::refine_counts() const
+{
+  return {_refines_before[0] + _channel->flow().refined_solves(),
+          _refines_before[1] + _channel->flow().refine_fallbacks()};
 }

@@ -185,6 +185,8 @@ private:
   /// The flow's refined solves and refinement fallbacks on the meshes
   /// before the current one (FluidParameters::refine_rtol)
   std::array<int, 2> _refines_before{0, 0};
+  /// Refined solves and fallbacks over the run (all meshes)
+  std::array<int, 2> refine_counts() const;
   /// The moved fold surface of the last move and of the accepted step
   std::vector<std::array<double, 2>> _x_moved, _x_accepted;
   int _steps = 0;
