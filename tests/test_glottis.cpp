@@ -101,6 +101,46 @@ TEST_CASE("Signed depth inside a polygon (the porous ramp's d, G4)",
         == Approx(-10e-6).margin(0.5e-6));
 }
 
+TEST_CASE("The polygon index gives the plain tests' answers", "[glottis]")
+{
+  // The rotated fold's outline, queried on a grid over it and the gap:
+  // inside tests identical, distances identical within reach, and beyond
+  // it of the same sign and at least reach
+  const GlottisGeometry g;
+  const FoldProfile p(g);
+  std::vector<std::array<double, 2>> outline;
+  const RigidMotion m(40e-6, 0.05, {g.medial_x, g.half_height});
+  for (const auto& X : p.points())
+  {
+    const auto u = m.displacement(X);
+    outline.push_back({X[0] + u[0], X[1] + u[1]});
+  }
+  const double reach = 10e-6;
+  const PolygonIndex index(outline, reach);
+  int n_in = 0, n_near = 0;
+  for (int i = 0; i <= 400; ++i)
+    for (int j = 0; j <= 300; ++j)
+    {
+      const std::array<double, 2> X{-1e-3 + i * (g.fold_length + 2e-3) / 400,
+                                    j * (g.half_height + 1e-4) / 300};
+      const bool in = polygon_contains(outline, X);
+      REQUIRE(index.contains(X) == in);
+      const double d = polygon_signed_distance(outline, X);
+      const double di = index.signed_distance(X);
+      if (std::abs(d) < reach)
+      {
+        REQUIRE(di == d);
+        ++n_near;
+      }
+      else
+        REQUIRE((di > 0 and d > 0 and di >= reach)
+                != (di < 0 and d < 0 and di <= -reach));
+      n_in += in;
+    }
+  CHECK(n_in > 1000);
+  CHECK(n_near > 20);
+}
+
 TEST_CASE("2-DOF fold: in-vacuo frequencies and energy-conserving Newmark",
           "[glottis]")
 {

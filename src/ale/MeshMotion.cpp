@@ -102,9 +102,11 @@ std::array<double, 12> cell_vertices(const mesh::Mesh& mesh,
 }
 } // namespace
 //-----------------------------------------------------------------------------
-fsai::ale::MeshQuality
-fsai::ale::mesh_quality(const mesh::Mesh& mesh,
-                        std::span<const double> reference_x)
+namespace
+{
+/// mesh_quality with the reference cell Jacobians given by det0(c)
+template <typename F>
+fsai::ale::MeshQuality quality(const mesh::Mesh& mesh, F det0_of)
 {
   const int tdim = mesh.topology().dim();
   const std::int32_t nc = mesh.topology().index_map(tdim)->size_local();
@@ -120,18 +122,14 @@ fsai::ale::mesh_quality(const mesh::Mesh& mesh,
   {
     auto v = cell_vertices(mesh, x, c);
     auto [det, q] = simplex_jacobian(v, tdim);
-    const double det0
-        = simplex_jacobian(cell_vertices(mesh, reference_x, c), tdim).first;
-    if (det * det0 <= 0)
+    if (det * det0_of(c) <= 0)
     {
       q = -q; // inverted relative to the reference orientation
       if (std::getenv("FSAI_DEBUG_INVERTED"))
       {
-        auto v0 = cell_vertices(mesh, reference_x, c);
         for (int i = 0; i <= tdim; ++i)
-          std::fprintf(stderr,
-                       "inverted cell %d: X (%.6e, %.6e) -> x (%.6e, %.6e)\n",
-                       c, v0[3 * i], v0[3 * i + 1], v[3 * i], v[3 * i + 1]);
+          std::fprintf(stderr, "inverted cell %d: x (%.6e, %.6e)\n", c,
+                       v[3 * i], v[3 * i + 1]);
       }
     }
     if (q < loc.q)
@@ -146,6 +144,20 @@ fsai::ale::mesh_quality(const mesh::Mesh& mesh,
   MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MINLOC, mesh.comm());
   MPI_Bcast(where.data(), 3, MPI_DOUBLE, glob.rank, mesh.comm());
   return {glob.q, where};
+}
+} // namespace
+//-----------------------------------------------------------------------------
+fsai::ale::MeshQuality
+fsai::ale::mesh_quality(const mesh::Mesh& mesh,
+                        std::span<const double> reference_x)
+{
+  const int tdim = mesh.topology().dim();
+  return quality(mesh,
+                 [&](int c) {
+                   return simplex_jacobian(cell_vertices(mesh, reference_x, c),
+                                           tdim)
+                       .first;
+                 });
 }
 //-----------------------------------------------------------------------------
 fsai::ale::MeshMotion::MeshMotion(std::shared_ptr<mesh::Mesh> mesh,
@@ -357,7 +369,8 @@ fsai::ale::MeshQuality fsai::ale::MeshMotion::place_and_check(double t)
 {
   place_mesh(); // x = X + d at every geometry node (owned and ghost)
 
-  MeshQuality q = mesh_quality(*_mesh, _X);
+  // The reference Jacobians, computed once (_det0)
+  MeshQuality q = quality(*_mesh, [&](int c) { return _det0[c]; });
   if (!std::isfinite(q.min_scaled_jacobian)
       or q.min_scaled_jacobian <= _par.min_quality)
   {

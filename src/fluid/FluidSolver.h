@@ -82,9 +82,14 @@ struct FluidParameters
   /// refine_rtol |b|, instead of factorising anew; after refine_max_its
   /// refinements it factorises afresh. 0: factorise every solve. On the
   /// elastic fold's FE glottis a refined solve took 16 ms against 45 ms
-  /// (bench/glottis_elastic_refine.py)
+  /// (bench/glottis_elastic_refine.py). A refinement (triangular solves
+  /// and a product, about 7 ms) costs a sixth of a fresh factorisation and
+  /// its solve (45 ms), so six are no dearer than one; at the elastic
+  /// fold's closures the iterates' operators differ more and refinements
+  /// take up to 5 (with a cap of 3, 21 % of the elastic voice's repeated
+  /// solves factorised afresh after 3 wasted refinements)
   double refine_rtol = 1e-14;
-  int refine_max_its = 3;
+  int refine_max_its = 6;
   /// Matrix insertion: "coo" (PETSc's COO interface on the pattern recorded
   /// at setup: the element matrices are written in order and handed over
   /// in one call) or "dolfinx" (MatSetValuesLocal per cell). The same

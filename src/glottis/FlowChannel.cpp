@@ -6,6 +6,7 @@
 #include <common/errors.h>
 #include <common/log.h>
 #include <common/mpi_gather.h>
+#include <common/timer.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/mesh/utils.h>
 #include <mesh/TriangleField.h>
@@ -242,22 +243,25 @@ void fsai::glottis::FlowChannel::mark_porous(
   // grows by the same factor per µm of depth from negligible (σ_P χ Δt/ρ =
   // 0.01) to σ_P, so the throat opens over the steps the fold takes to
   // rise by δ.
+  common::ScopedTimer timer("glottis: porous marking");
   auto& chi = _flow->porous_indicator();
   auto c_arr = chi.x()->mutable_array();
   const auto dofmap = chi.function_space()->dofmap();
   const double ramp = _porous_ramp;
+  // Beyond ramp/2 of the outline s is 0 or 1: distances exact within it
+  const PolygonIndex fold(outline, ramp / 2);
   for (auto c : _candidates)
   {
     const auto X = to_outline(cell_midpoint(*_mesh.mesh, c));
     double x = 0;
     if (ramp > 0)
     {
-      const double s = std::clamp(
-          0.5 + polygon_signed_distance(outline, X) / ramp, 0.0, 1.0);
+      const double s
+          = std::clamp(0.5 + fold.signed_distance(X) / ramp, 0.0, 1.0);
       x = s > 0 ? std::pow(_chi_floor, 1 - s) : 0.0;
     }
     else
-      x = polygon_contains(outline, X) ? 1.0 : 0.0;
+      x = fold.contains(X) ? 1.0 : 0.0;
     c_arr[dofmap->cell_dofs(c)[0]] = x;
   }
 }

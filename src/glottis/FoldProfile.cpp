@@ -318,6 +318,105 @@ double fsai::glottis::polygon_signed_distance(
   return in ? std::sqrt(d2) : -std::sqrt(d2);
 }
 
+fsai::glottis::PolygonIndex::PolygonIndex(
+    const std::vector<std::array<double, 2>>& p, double reach)
+    : _p(p), _reach(reach)
+{
+  const std::size_t n = p.size();
+  if (n == 0)
+    return;
+  double ymin = p[0][1], ymax = p[0][1];
+  for (const auto& a : p)
+    ymin = std::min(ymin, a[1]), ymax = std::max(ymax, a[1]);
+  // Strips about as high as reach (or 1/1024 of the polygon)
+  const double height = ymax - ymin + 2 * reach;
+  const double target = std::max(reach, height / 1024);
+  _n = target > 0 ? std::clamp(int(std::ceil(height / target)), 1, 4096) : 1;
+  _y0 = ymin - reach;
+  _h = height > 0 ? height / _n : 1.0;
+  // floor((y − y0)/h) is monotone in y, so an edge whose range contains y
+  // is listed in y's strip
+  auto fill = [&](double widen, std::vector<int>& start, std::vector<int>& list)
+  {
+    std::vector<std::pair<int, int>> span(n);
+    std::vector<int> count(_n + 1, 0);
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+    {
+      const double lo = std::min(p[i][1], p[j][1]) - widen;
+      const double hi = std::max(p[i][1], p[j][1]) + widen;
+      span[i] = {std::clamp(strip(lo), 0, _n - 1),
+                 std::clamp(strip(hi), 0, _n - 1)};
+      for (int k = span[i].first; k <= span[i].second; ++k)
+        ++count[k + 1];
+    }
+    for (int k = 0; k < _n; ++k)
+      count[k + 1] += count[k];
+    start = count;
+    list.resize(count[_n]);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = span[i].first; k <= span[i].second; ++k)
+        list[count[k]++] = int(i);
+  };
+  fill(0.0, _cross_start, _cross);
+  fill(reach * (1 + 1e-9), _near_start, _near);
+}
+
+int fsai::glottis::PolygonIndex::strip(double y) const
+{
+  const double k = std::floor((y - _y0) / _h);
+  return k < 0 ? -1 : (k >= _n ? _n : int(k));
+}
+
+bool fsai::glottis::PolygonIndex::contains(const std::array<double, 2>& X) const
+{
+  const int k = strip(X[1]);
+  if (k < 0 or k >= _n)
+    return false;
+  const std::size_t n = _p.size();
+  bool in = false;
+  for (int e = _cross_start[k]; e < _cross_start[k + 1]; ++e)
+  {
+    const std::size_t i = _cross[e], j = i == 0 ? n - 1 : i - 1;
+    const auto& a = _p[i];
+    const auto& b = _p[j];
+    if ((a[1] > X[1]) != (b[1] > X[1])
+        and X[0] < (b[0] - a[0]) * (X[1] - a[1]) / (b[1] - a[1]) + a[0])
+    {
+      in = !in;
+    }
+  }
+  return in;
+}
+
+double fsai::glottis::PolygonIndex::signed_distance(
+    const std::array<double, 2>& X) const
+{
+  const bool in = contains(X);
+  const int k = strip(X[1]);
+  double d2 = std::numeric_limits<double>::infinity();
+  if (k >= 0 and k < _n)
+  {
+    const std::size_t n = _p.size();
+    for (int e = _near_start[k]; e < _near_start[k + 1]; ++e)
+    {
+      const std::size_t i = _near[e], j = i == 0 ? n - 1 : i - 1;
+      const auto& a = _p[i];
+      const auto& b = _p[j];
+      const double tx = b[0] - a[0], ty = b[1] - a[1];
+      const double l2 = tx * tx + ty * ty;
+      const double f
+          = l2 > 0 ? std::clamp(((X[0] - a[0]) * tx + (X[1] - a[1]) * ty) / l2,
+                                0.0, 1.0)
+                   : 0.0;
+      const double dx = a[0] + f * tx - X[0], dy = a[1] + f * ty - X[1];
+      d2 = std::min(d2, dx * dx + dy * dy);
+    }
+  }
+  // No edge within reach: the distance is at least reach
+  const double d = std::isinf(d2) ? std::max(_reach, 0.0) : std::sqrt(d2);
+  return in ? d : -d;
+}
+
 std::array<double, 2>
 fsai::glottis::RigidMotion::displacement(const std::array<double, 2>& X) const
 {

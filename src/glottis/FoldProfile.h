@@ -139,6 +139,31 @@ bool polygon_contains(const std::vector<std::array<double, 2>>& p,
 double polygon_signed_distance(const std::vector<std::array<double, 2>>& p,
                                const std::array<double, 2>& X);
 
+/// The closed polygon p (even–odd rule) for many inside tests and
+/// distances, each the same as polygon_contains / polygon_signed_distance
+/// gives: the edges are binned in horizontal strips, so a query visits only
+/// the edges its horizontal ray can cross and those within `reach` of it
+/// (the porous marking queries every candidate cell at every mesh move).
+/// p must outlive the index.
+class PolygonIndex
+{
+public:
+  /// @param[in] reach Distances below it are exact; beyond it
+  /// signed_distance() gives a value of the right sign and |d| ≥ reach
+  PolygonIndex(const std::vector<std::array<double, 2>>& p, double reach);
+  bool contains(const std::array<double, 2>& X) const;
+  double signed_distance(const std::array<double, 2>& X) const;
+
+private:
+  int strip(double y) const; // −1 below the polygon, _n above it
+  const std::vector<std::array<double, 2>>& _p;
+  double _reach, _y0 = 0, _h = 1;
+  int _n = 0;
+  // Per strip (CSR), the edges i (from p[i] to p[i−1]) whose y-range meets
+  // it, and those whose y-range widened by reach meets it
+  std::vector<int> _cross_start, _cross, _near_start, _near;
+};
+
 /// Rigid motion of the profile by (h, φ) about the elastic axis
 struct RigidMotion
 {
