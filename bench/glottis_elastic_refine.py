@@ -88,8 +88,7 @@ for k in range(1, rounds + 1):
         w = ref["t_s"][:n] >= 0.005
         timing = {t: s["timings"].get(t, {"wall_s": 0})["wall_s"]
                   for t in ("glottis: time loop", "fluid: assemble", "fluid: solve",
-                            "fluid: refine", "ale: move", "solid: step",
-                            "glottis: porous marking")}
+                            "fluid: refine", "ale: move", "solid: step")}
         loop = timing["glottis: time loop"]
         rows.append({"round": k, "variant": name,
                      "iterations_per_step": s["coupling_iterations_mean"],
@@ -107,7 +106,6 @@ for k in range(1, rounds + 1):
                      "share_assemble": timing["fluid: assemble"] / loop,
                      "share_ale": timing["ale: move"] / loop,
                      "share_fold": timing["solid: step"] / loop,
-                     "share_porous": timing["glottis: porous marking"] / loop,
                      "wall_s": s["process_wall_s"]})
 if not rows:
     sys.exit("no run finished")
@@ -126,8 +124,7 @@ print_markdown_table([
     ("max ΔQ / Q_max", lambda r: f"{r['dq_max_rel']:.1e}"),
     ("max Δgap / gap_max", lambda r: f"{r['dgap_max_rel']:.1e}"),
     ("ms/step", lambda r: f"{r['ms_per_step']:.1f}"),
-    ("solve / assembly / ALE / fold / porous marking", lambda r: f"{100 * r['share_solve']:.0f} / "
-     f"{100 * r['share_assemble']:.0f} / {100 * r['share_ale']:.0f} / {100 * r['share_fold']:.0f} / "
-     f"{100 * r['share_porous']:.0f} %"),
+    ("solve / assembly / ALE / fold", lambda r: f"{100 * r['share_solve']:.0f} / "
+     f"{100 * r['share_assemble']:.0f} / {100 * r['share_ale']:.0f} / {100 * r['share_fold']:.0f} %"),
     ("time loop [s]", lambda r: f"{r['time_loop_s']:.0f}"),
     (f"vs {variants[0][0]}", lambda r: f"{r['speedup']:.2f}x")], rows)

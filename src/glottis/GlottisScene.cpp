@@ -119,7 +119,7 @@ namespace
 {
 /// apply_elastic_fe_defaults's settings, as typed on the command line
 const std::vector<std::pair<std::string, std::string>> elastic_fe_presets = {
-    // The elastic fold closes the glottis faster than the 2-DOF fold (6.1x
+    // The elastic fold closes the glottis faster than the 2-DOF fold (6.4x
     // its MFDR in the voice): at 800 Pa its mean cycle peak at Δt 2e−5 is
     // 5–10 % above Δt 1e−5's (two pairs of runs), and Δt 5e−6 moves it by
     // −1.2 % (docs/glottis.md, "The elastic fold in the FE flow"); the
