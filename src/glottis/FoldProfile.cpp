@@ -248,6 +248,28 @@ fsai::glottis::nearest_on_polyline(const std::vector<std::array<double, 2>>& p,
 
 namespace
 {
+using Point = std::array<double, 2>;
+
+// Whether the edge ab crosses the horizontal ray from X towards +x (the
+// even–odd rule's test: one end above X, the other not)
+bool ray_crosses(const Point& a, const Point& b, const Point& X)
+{
+  return (a[1] > X[1]) != (b[1] > X[1])
+         and X[0] < (b[0] - a[0]) * (X[1] - a[1]) / (b[1] - a[1]) + a[0];
+}
+
+// Squared distance from X to the segment ab
+double distance2(const Point& a, const Point& b, const Point& X)
+{
+  const double tx = b[0] - a[0], ty = b[1] - a[1];
+  const double l2 = tx * tx + ty * ty;
+  const double f = l2 > 0 ? std::clamp(
+                       ((X[0] - a[0]) * tx + (X[1] - a[1]) * ty) / l2, 0.0, 1.0)
+                          : 0.0;
+  const double dx = a[0] + f * tx - X[0], dy = a[1] + f * ty - X[1];
+  return dx * dx + dy * dy;
+}
+
 // Even–odd inside test of X against the closed polygon p and, if asked,
 // the squared distance from X to p's outline
 std::pair<bool, double> locate(const std::vector<std::array<double, 2>>& p,
@@ -258,23 +280,10 @@ std::pair<bool, double> locate(const std::vector<std::array<double, 2>>& p,
   const std::size_t n = p.size();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++)
   {
-    const auto& a = p[i];
-    const auto& b = p[j];
-    if ((a[1] > X[1]) != (b[1] > X[1])
-        and X[0] < (b[0] - a[0]) * (X[1] - a[1]) / (b[1] - a[1]) + a[0])
-    {
+    if (ray_crosses(p[i], p[j], X))
       in = !in;
-    }
-    if (!distance)
-      continue;
-    const double tx = b[0] - a[0], ty = b[1] - a[1];
-    const double l2 = tx * tx + ty * ty;
-    const double f
-        = l2 > 0 ? std::clamp(((X[0] - a[0]) * tx + (X[1] - a[1]) * ty) / l2,
-                              0.0, 1.0)
-                 : 0.0;
-    const double dx = a[0] + f * tx - X[0], dy = a[1] + f * ty - X[1];
-    d2 = std::min(d2, dx * dx + dy * dy);
+    if (distance)
+      d2 = std::min(d2, distance2(p[i], p[j], X));
   }
   return {in, d2};
 }
@@ -377,13 +386,8 @@ bool fsai::glottis::PolygonIndex::contains(const std::array<double, 2>& X) const
   for (int e = _cross_start[k]; e < _cross_start[k + 1]; ++e)
   {
     const std::size_t i = _cross[e], j = i == 0 ? n - 1 : i - 1;
-    const auto& a = _p[i];
-    const auto& b = _p[j];
-    if ((a[1] > X[1]) != (b[1] > X[1])
-        and X[0] < (b[0] - a[0]) * (X[1] - a[1]) / (b[1] - a[1]) + a[0])
-    {
+    if (ray_crosses(_p[i], _p[j], X))
       in = !in;
-    }
   }
   return in;
 }
@@ -400,16 +404,7 @@ double fsai::glottis::PolygonIndex::signed_distance(
     for (int e = _near_start[k]; e < _near_start[k + 1]; ++e)
     {
       const std::size_t i = _near[e], j = i == 0 ? n - 1 : i - 1;
-      const auto& a = _p[i];
-      const auto& b = _p[j];
-      const double tx = b[0] - a[0], ty = b[1] - a[1];
-      const double l2 = tx * tx + ty * ty;
-      const double f
-          = l2 > 0 ? std::clamp(((X[0] - a[0]) * tx + (X[1] - a[1]) * ty) / l2,
-                                0.0, 1.0)
-                   : 0.0;
-      const double dx = a[0] + f * tx - X[0], dy = a[1] + f * ty - X[1];
-      d2 = std::min(d2, dx * dx + dy * dy);
+      d2 = std::min(d2, distance2(_p[i], _p[j], X));
     }
   }
   // No edge within reach: the distance is at least reach
