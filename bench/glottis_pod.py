@@ -213,10 +213,11 @@ try:
     ax.set_xlabel("POD mode")
     ax.set_ylabel("energy share [%]")
     ax.legend(fontsize=7)
+    labels = [c[0] for c in cases]
     for ax, name in zip(axes[1:], ["clamped800", "cover_clamped800"]):
-        if name not in [c[0] for c in cases]:
+        if name not in labels:
             continue
-        k = [c[0] for c in cases].index(name)
+        k = labels.index(name)
         _, arc, pod, modes, freqs, best = results[k]
         for j in range(2):
             shape = pod[:, j] / np.abs(pod[:, j]).max()
