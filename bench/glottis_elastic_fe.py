@@ -6,7 +6,8 @@ lift, remeshing, attachment wedges, IQN-ILS) for 0.2 s from rest at p_sub
 400, 800 and 1200 Pa, and the same at the former preset's Δt 2e-5 on its
 gap cells (h_gap 0.05 mm); with --check, the mesh/Δt check at 800 Pa:
 the 0.2 s run on the gap cells h_gap 0.018, 0.035 and 0.05 mm against the
-preset's 0.025 mm, on 0.05 mm at Δt 5e-6 and 2e-5 against Δt 1e-5, and
+preset's 0.025 mm, at Δt 5e-6 on the preset's cells and on 0.05 mm (there
+also 2e-5) against Δt 1e-5 on the same cells, and
 the preset at quadrature degree 2 (the voice's) against its degree 4;
 the settled cycles from 0.1 to 0.2 s of each (mean cycle peak with its
 standard error: the cycles alternate large/small).
@@ -87,6 +88,7 @@ keep = ["--fe.cut_history", "keep"]
 check = [("p800_h0.018", 2, ["--p-sub", "800", "--fe.h_gap", "0.018e-3"]),
          ("p800_h0.035", 2, ["--p-sub", "800", "--fe.h_gap", "0.035e-3"]),
          ("p800_h0.05", 2, ["--p-sub", "800"] + former_mesh),
+         ("p800_dt5e-6", 2, ["--p-sub", "800", "--dt", "5e-6"]),
          ("p800_dt5e-6_h0.05", 2, ["--p-sub", "800", "--dt", "5e-6"] + former_mesh),
          ("p800_dt2e-5_h0.05", 2, ["--p-sub", "800"] + former_dt + former_mesh),
          ("p800_q2", 2, ["--p-sub", "800", "--fluid.quadrature_degree", "2"])]
@@ -184,6 +186,7 @@ if "--subharmonics" in sys.argv:
     runs += [("FE flow, 800 Pa, h_gap 0.018 mm", "run_glottis_elastic_fe_p800_h0.018"),
              ("FE flow, 800 Pa, h_gap 0.035 mm", "run_glottis_elastic_fe_p800_h0.035"),
              ("FE flow, 800 Pa, h_gap 0.05 mm", "run_glottis_elastic_fe_p800_h0.05"),
+             ("FE flow, 800 Pa, Δt 5e-6", "run_glottis_elastic_fe_p800_dt5e-6"),
              ("FE flow, 800 Pa, Δt 5e-6, h_gap 0.05 mm", "run_glottis_elastic_fe_p800_dt5e-6_h0.05")]
     runs += [(f"FE flow, {p} Pa, Δt 2e-5, cut_history keep", f"run_glottis_elastic_fe_p{p}_keep")
              for p in (400, 800, 1200)]
