@@ -77,15 +77,14 @@ def folder(label):
 
 def run(case):
     label, flow, p_sub, duration, extra = case
-    d = folder(label)
-    if os.path.exists(os.path.join(d, "summary.json")) and not args.rerun:
-        return
     if args.cached:
         return
+    d = folder(label)
     mpi = ["mpirun", "-n", "2"] if flow == "fe" else []
+    # timed_run skips a run whose summary.json exists unless --rerun
     timed_run(mpi + [exe, "--flow", flow, "--fold", "elastic", "--p-sub", str(p_sub),
                      "--duration", str(duration), "--surface_every", "5", "--output", d] + extra,
-              d, env=MPI_ENV)
+              d, rerun=args.rerun, env=MPI_ENV)
 
 
 def mac(a, b, w):
