@@ -80,7 +80,9 @@ struct ElasticFoldParameters
   /// Contact penalty k_c = contact_factor · E / h_surface [Pa/m]: the
   /// penetration under a contact pressure p is p h_surface / (factor E),
   /// i.e. a fraction 1/factor of what the first cell's own stiffness
-  /// allows; larger factors stiffen the Newton solves
+  /// allows; larger factors stiffen the Newton solves. E is the body's
+  /// (material.E) for a body–cover fold too, whose softer cover so meets
+  /// a penalty E/E_cover times stiffer relative to its own cells
   double contact_factor = 10;
   /// The fold as the section of a fold of the scene's length L_g
   /// (geometry.depth) clamped at its anterior and posterior ends

@@ -1,0 +1,150 @@
+#!/usr/bin/python3
+"""Why the body-cover fold's closed phases take many coupling iterations.
+
+In the FE flow the body-cover fold (--elastic.layers 2, cover 2 kPa on an
+8 kPa body) on the elastic preset (demos/glottis/elastic_fe.toml) takes
+about three times the homogeneous fold's coupling iterations per step in its
+closed phases, and its contact depth changes from step to step nine times
+as much. This script asks whether the fold side makes it: the fold's
+numerical dissipation (generalised-alpha rho_inf 0.5 and 0, the preset
+0.8) and the contact penalty (--elastic.contact_factor 2.5, which puts
+k_c at 10 E/h of the cover instead of the body), and whether the flow's
+closure does: the porous ramp twice as wide (40 um, the preset 20 um:
+the flow's load changes less steeply as the surface nears the axis), or
+the coupling: IQN-ILS without the columns of earlier steps
+(--coupling.reuse 0, the preset 8).
+Each case runs 800 Pa from rest on 2 ranks, the cover for 0.03 s (its
+first three closed phases, about 10 min each), the homogeneous fold for
+0.045 s (it closes later):
+
+  mpirun -n 2 fsai_glottis --config demos/glottis/elastic_fe.toml --p-sub 800
+      --duration D [--elastic.layers 2] [case options] --output DIR
+
+Per case, over the steps whose fold touches the axis (closed) and the
+others (open): coupling iterations per step, the mean step-to-step change
+of the contact depth (penetration) and its maximum, unconverged steps
+(accepted at the last step cut, logged), and the run's wall time.
+
+--long adds the cover with the wider ramp for 0.1 s (about 35 min) and
+its cycles from 50 ms (f0, peak and mean flow, open quotient, closings,
+the closed phases' leakage), beside the homogeneous fold's preset run over
+the same window (bench/glottis_pod.py --fe: its folder pod_fe_preset800).
+
+usage: bench/glottis_cover_closure.py [BUILD_DIR] [--rerun] [--long] [--cached]
+  --cached: the tables from the runs already in bench/results
+writes bench/results/glottis_cover_closure.csv (and with --long
+glottis_cover_closure_cycles.csv)
+"""
+import argparse
+import csv
+import os
+
+import numpy as np
+
+from benchlib import (MPI_ENV, glottal_cycles, print_markdown_table, read_float_rows,
+                      results_dir, timed_run, write_rows)
+
+here = os.path.dirname(os.path.abspath(__file__))
+ap = argparse.ArgumentParser()
+ap.add_argument("build", nargs="?", default=os.path.join(here, "..", "build"))
+ap.add_argument("--rerun", action="store_true")
+ap.add_argument("--long", action="store_true")
+ap.add_argument("--cached", action="store_true")
+args = ap.parse_args()
+exe = os.path.join(args.build, "demos", "fsai_glottis")
+out = results_dir()
+
+BC = ["--elastic.layers", "2"]
+# (label, duration, extra options); the homogeneous fold closes later
+cases = [("homogeneous", 0.045, []),
+         ("cover", 0.03, BC),
+         ("cover_rho_inf0.5", 0.03, BC + ["--elastic.rho_inf", "0.5"]),
+         ("cover_rho_inf0", 0.03, BC + ["--elastic.rho_inf", "0"]),
+         ("cover_contact2.5", 0.03, BC + ["--elastic.contact_factor", "2.5"]),
+         ("cover_ramp4e-5", 0.03, BC + ["--closure.porous_ramp", "4e-5"]),
+         ("cover_reuse0", 0.03, BC + ["--coupling.reuse", "0"])]
+LONG = ("cover_ramp4e-5_0.1s", 0.1, BC + ["--closure.porous_ramp", "4e-5"])
+if args.long:
+    cases.append(LONG)
+
+
+def folder(label):
+    return os.path.join(out, f"cover_closure_{label}")
+
+
+def analyse(label):
+    d = folder(label)
+    with open(os.path.join(d, "series.csv")) as f:
+        series = list(csv.DictReader(f))
+    with open(os.path.join(d, "coupling.csv")) as f:
+        coupling = list(csv.DictReader(f))
+    # One row per step in both (a cut step is one row: its parts' iterations)
+    n = min(len(series), len(coupling))
+    closed = [series[i]["closed"] == "1" for i in range(n)]
+    depth = [float(series[i]["penetration_m"]) for i in range(n)]
+    its = [float(coupling[i]["iterations"]) for i in range(n)]
+    with open(os.path.join(d, "process_wall_s")) as f:
+        wall_s = float(f.read())
+    steps_closed = [i for i in range(n) if closed[i]]
+    steps_open = [i for i in range(n) if not closed[i]]
+    jumps = [abs(depth[i + 1] - depth[i]) for i in range(n - 1) if closed[i] and closed[i + 1]]
+    return {"case": label,
+            "steps": n,
+            "closed_steps": len(steps_closed),
+            "iterations_closed": sum(its[i] for i in steps_closed) / len(steps_closed),
+            "iterations_open": sum(its[i] for i in steps_open) / len(steps_open),
+            "depth_change_um": 1e6 * sum(jumps) / len(jumps),
+            "depth_max_um": 1e6 * max(depth),
+            "unconverged": sum(1 for r in coupling[:n] if r["converged"] != "1"),
+            "wall_s": wall_s}
+
+
+def cycles(label, d):
+    """The cycles from 50 to 100 ms of the run in folder d, and the
+    closed phases' leakage over them (the summary's definition: the
+    largest |Q| while the fold touches the axis, over the largest Q)"""
+    cyc = [c for c in glottal_cycles(os.path.join(d, "series.csv"), None, 0.05) if c["t0_s"] < 0.1]
+    r = read_float_rows(os.path.join(d, "series.csv"))
+    t = np.array([x["t_s"] for x in r])
+    q = np.array([x["Q_m3s"] for x in r])
+    window = (t >= cyc[0]["t0_s"]) & (t < cyc[-1]["t0_s"] + 1 / cyc[-1]["f0_hz"])
+    touching = window & (np.array([x["gap_m"] for x in r]) <= 0)
+
+    def mean(k):
+        return float(np.mean([c[k] for c in cyc]))
+    return {"case": label, "cycles": len(cyc), "f0_hz": mean("f0_hz"),
+            "q_peak_ls": mean("q_peak_ls"), "q_mean_ls": mean("q_mean_ls"),
+            "open_quotient": mean("open_quotient"),
+            "closings": sum(c["closings"] for c in cyc),
+            "closed_leakage": float(np.abs(q[touching]).max() / q[window].max())}
+
+
+rows = []
+for label, duration, extra in cases:
+    if not args.cached:
+        timed_run(["mpirun", "-n", "2", exe, "--config", os.path.join(here, "..", "demos", "glottis", "elastic_fe.toml"),
+                   "--p-sub", "800", "--duration", str(duration), "--output", folder(label)] + extra,
+                  folder(label), rerun=args.rerun, env=MPI_ENV)
+    if os.path.exists(os.path.join(folder(label), "process_wall_s")):  # finished
+        rows.append(analyse(label))
+write_rows(os.path.join(out, "glottis_cover_closure.csv"), rows)
+print_markdown_table([("case", lambda r: r["case"]),
+                      ("closed steps", lambda r: f"{r['closed_steps']} of {r['steps']}"),
+                      ("iterations per step closed / open",
+                       lambda r: f"{r['iterations_closed']:.2f} / {r['iterations_open']:.2f}"),
+                      ("contact depth change per step", lambda r: f"{r['depth_change_um']:.2f} µm"),
+                      ("max depth", lambda r: f"{r['depth_max_um']:.1f} µm"),
+                      ("unconverged", lambda r: str(r["unconverged"])),
+                      ("wall", lambda r: f"{r['wall_s']:.0f} s")], rows)
+if args.long and os.path.exists(os.path.join(folder(LONG[0]), "process_wall_s")):
+    rows = [cycles("homogeneous (preset, 0.2 s run)", os.path.join(out, "pod_fe_preset800")),
+            cycles(LONG[0], folder(LONG[0]))]
+    write_rows(os.path.join(out, "glottis_cover_closure_cycles.csv"), rows)
+    print_markdown_table([("case", lambda r: r["case"]),
+                          ("cycles from 50 ms", lambda r: str(r["cycles"])),
+                          ("f0", lambda r: f"{r['f0_hz']:.2f} Hz"),
+                          ("peak / mean flow",
+                           lambda r: f"{r['q_peak_ls']:.3f} / {r['q_mean_ls']:.3f} l/s"),
+                          ("OQ", lambda r: f"{r['open_quotient']:.3f}"),
+                          ("closings", lambda r: str(r["closings"])),
+                          ("leakage", lambda r: f"{100 * r['closed_leakage']:.2f} %")], rows)
