@@ -36,7 +36,6 @@ writes bench/results/glottis_cover_closure.csv (and with --long
 glottis_cover_closure_cycles.csv)
 """
 import argparse
-import csv
 import os
 
 import numpy as np
@@ -74,15 +73,13 @@ def folder(label):
 
 def analyse(label):
     d = folder(label)
-    with open(os.path.join(d, "series.csv")) as f:
-        series = list(csv.DictReader(f))
-    with open(os.path.join(d, "coupling.csv")) as f:
-        coupling = list(csv.DictReader(f))
+    series = read_float_rows(os.path.join(d, "series.csv"))
+    coupling = read_float_rows(os.path.join(d, "coupling.csv"))
     # One row per step in both (a cut step is one row: its parts' iterations)
     n = min(len(series), len(coupling))
-    closed = [series[i]["closed"] == "1" for i in range(n)]
-    depth = [float(series[i]["penetration_m"]) for i in range(n)]
-    its = [float(coupling[i]["iterations"]) for i in range(n)]
+    closed = [series[i]["closed"] == 1 for i in range(n)]
+    depth = [series[i]["penetration_m"] for i in range(n)]
+    its = [coupling[i]["iterations"] for i in range(n)]
     with open(os.path.join(d, "process_wall_s")) as f:
         wall_s = float(f.read())
     steps_closed = [i for i in range(n) if closed[i]]
@@ -95,7 +92,7 @@ def analyse(label):
             "iterations_open": sum(its[i] for i in steps_open) / len(steps_open),
             "depth_change_um": 1e6 * sum(jumps) / len(jumps),
             "depth_max_um": 1e6 * max(depth),
-            "unconverged": sum(1 for r in coupling[:n] if r["converged"] != "1"),
+            "unconverged": sum(1 for r in coupling[:n] if r["converged"] != 1),
             "wall_s": wall_s}
 
 
