@@ -99,6 +99,14 @@ def subharmonic_ratio(t, x, starts, f_max=1000.0):
             / sum(component(2 * M * k) for k in range(1, K + 1)))
 
 
+def pair_sem(peaks):
+    """The standard error of the mean of the cycle peaks. The elastic
+    fold's cycles alternate large/small, so the spread is taken over the
+    means of consecutive pairs of cycles (nan with fewer than two pairs)."""
+    pairs = np.reshape(peaks[:len(peaks) // 2 * 2], (-1, 2)).mean(axis=1)
+    return float(np.std(pairs, ddof=1) / np.sqrt(len(pairs))) if len(pairs) > 1 else float("nan")
+
+
 def glottal_cycles(path, g_cross, t_start):
     """One dict per whole cycle of a glottis run's series.csv (none if the
     file is missing). A cycle runs from one upward crossing of the half-gap

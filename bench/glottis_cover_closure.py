@@ -25,10 +25,13 @@ others (open): coupling iterations per step, the mean step-to-step change
 of the contact depth (penetration) and its maximum, unconverged steps
 (accepted at the last step cut, logged), and the run's wall time.
 
---long adds the cover with the wider ramp for 0.1 s (about 35 min) and
-its cycles from 50 ms (f0, peak and mean flow, open quotient, closings,
-the closed phases' leakage), beside the homogeneous fold's preset run over
-the same window (bench/glottis_pod.py --fe: its folder pod_fe_preset800).
+--long adds 0.2 s of the cover and of the homogeneous fold, both with the
+wider ramp (about 80 and 45 min), and the cover's first 0.1 s (35 min) as
+a repeat of its start-up, and compares their cycles from 50 to 100 ms and
+from 100 to 200 ms (f0, peak and mean flow, open quotient,
+closings, the closed phases' leakage, the flow's subharmonic ratio) with
+the homogeneous fold's preset run over the same windows
+(bench/glottis_pod.py --fe: its folder pod_fe_preset800).
 
 usage: bench/glottis_cover_closure.py [BUILD_DIR] [--rerun] [--long] [--cached]
   --cached: the tables from the runs already in bench/results
@@ -40,8 +43,8 @@ import os
 
 import numpy as np
 
-from benchlib import (MPI_ENV, glottal_cycles, print_markdown_table, read_float_rows,
-                      results_dir, timed_run, write_rows)
+from benchlib import (MPI_ENV, glottal_cycles, pair_sem, print_markdown_table, read_float_rows,
+                      results_dir, subharmonic_ratio, timed_run, write_rows)
 
 here = os.path.dirname(os.path.abspath(__file__))
 ap = argparse.ArgumentParser()
@@ -62,9 +65,14 @@ cases = [("homogeneous", 0.045, []),
          ("cover_contact2.5", 0.03, BC + ["--elastic.contact_factor", "2.5"]),
          ("cover_ramp4e-5", 0.03, BC + ["--closure.porous_ramp", "4e-5"]),
          ("cover_reuse0", 0.03, BC + ["--coupling.reuse", "0"])]
-LONG = ("cover_ramp4e-5_0.1s", 0.1, BC + ["--closure.porous_ramp", "4e-5"])
+# --long: 0.2 s of the cover and of the homogeneous fold with the wider
+# ramp, and the cover's first 0.1 s again (a repeat of the same command up
+# to 0.1 s: how far its start-up cycles are reproducible)
+RAMP = ["--closure.porous_ramp", "4e-5"]
+LONG = [("cover_ramp4e-5_0.2s", 0.2, BC + RAMP), ("homogeneous_ramp4e-5_0.2s", 0.2, RAMP),
+        ("cover_ramp4e-5_0.1s", 0.1, BC + RAMP)]
 if args.long:
-    cases.append(LONG)
+    cases += LONG
 
 
 def folder(label):
@@ -96,24 +104,28 @@ def analyse(label):
             "wall_s": wall_s}
 
 
-def cycles(label, d):
-    """The cycles from 50 to 100 ms of the run in folder d, and the
-    closed phases' leakage over them (the summary's definition: the
-    largest |Q| while the fold touches the axis, over the largest Q)"""
-    cyc = [c for c in glottal_cycles(os.path.join(d, "series.csv"), None, 0.05) if c["t0_s"] < 0.1]
-    r = read_float_rows(os.path.join(d, "series.csv"))
-    t = np.array([x["t_s"] for x in r])
-    q = np.array([x["Q_m3s"] for x in r])
-    window = (t >= cyc[0]["t0_s"]) & (t < cyc[-1]["t0_s"] + 1 / cyc[-1]["f0_hz"])
-    touching = window & (np.array([x["gap_m"] for x in r]) <= 0)
+def cycles(label, d, a, b):
+    """The cycles starting in [a, b) s of the run in folder d, the closed
+    phases' leakage over them (the summary's definition: the largest |Q|
+    while the fold touches the axis, over the largest Q) and the glottal
+    flow's subharmonic ratio (docs/model.md A10) over them"""
+    path = os.path.join(d, "series.csv")
+    cyc = [c for c in glottal_cycles(path, None, a) if c["t0_s"] < b]
+    r = read_float_rows(path)
+    t, q, g = (np.array([x[k] for x in r]) for k in ("t_s", "Q_m3s", "gap_m"))
+    end = cyc[-1]["t0_s"] + 1 / cyc[-1]["f0_hz"]
+    window = (t >= cyc[0]["t0_s"]) & (t < end)
+    touching = window & (g <= 0)
 
     def mean(k):
         return float(np.mean([c[k] for c in cyc]))
-    return {"case": label, "cycles": len(cyc), "f0_hz": mean("f0_hz"),
-            "q_peak_ls": mean("q_peak_ls"), "q_mean_ls": mean("q_mean_ls"),
+    return {"case": label, "window_ms": f"{1e3 * a:.0f}-{1e3 * b:.0f}", "cycles": len(cyc),
+            "f0_hz": mean("f0_hz"), "q_peak_ls": mean("q_peak_ls"),
+            "q_peak_sem_ls": pair_sem([c["q_peak_ls"] for c in cyc]), "q_mean_ls": mean("q_mean_ls"),
             "open_quotient": mean("open_quotient"),
             "closings": sum(c["closings"] for c in cyc),
-            "closed_leakage": float(np.abs(q[touching]).max() / q[window].max())}
+            "closed_leakage": float(np.abs(q[touching]).max() / q[window].max()),
+            "shr_flow": subharmonic_ratio(t, q, [c["t0_s"] for c in cyc] + [end])}
 
 
 rows = []
@@ -133,15 +145,22 @@ print_markdown_table([("case", lambda r: r["case"]),
                       ("max depth", lambda r: f"{r['depth_max_um']:.1f} µm"),
                       ("unconverged", lambda r: str(r["unconverged"])),
                       ("wall", lambda r: f"{r['wall_s']:.0f} s")], rows)
-if args.long and os.path.exists(os.path.join(folder(LONG[0]), "process_wall_s")):
-    rows = [cycles("homogeneous (preset, 0.2 s run)", os.path.join(out, "pod_fe_preset800")),
-            cycles(LONG[0], folder(LONG[0]))]
+if args.long and all(os.path.exists(os.path.join(folder(c[0]), "process_wall_s")) for c in LONG):
+    # the homogeneous fold's preset run (porous ramp 20 um) beside the two
+    # runs with the 40 um ramp, over the start-up and the later cycles
+    runs = [("homogeneous, ramp 20 um (preset)", os.path.join(out, "pod_fe_preset800")),
+            ("homogeneous, ramp 40 um", folder(LONG[1][0])),
+            ("body-cover, ramp 40 um", folder(LONG[0][0]))]
+    rows = [cycles(label, d, a, b) for a, b in ((0.05, 0.1), (0.1, 0.2)) for label, d in runs]
+    rows.insert(3, cycles("body-cover, ramp 40 um (run to 0.1 s)", folder(LONG[2][0]), 0.05, 0.1))
     write_rows(os.path.join(out, "glottis_cover_closure_cycles.csv"), rows)
     print_markdown_table([("case", lambda r: r["case"]),
-                          ("cycles from 50 ms", lambda r: str(r["cycles"])),
+                          ("cycles from", lambda r: f"{r['cycles']} in {r['window_ms']} ms"),
                           ("f0", lambda r: f"{r['f0_hz']:.2f} Hz"),
-                          ("peak / mean flow",
-                           lambda r: f"{r['q_peak_ls']:.3f} / {r['q_mean_ls']:.3f} l/s"),
+                          ("mean cycle peak (standard error) / mean flow",
+                           lambda r: f"{r['q_peak_ls']:.3f} ({100 * r['q_peak_sem_ls'] / r['q_peak_ls']:.1f} %)"
+                           f" / {r['q_mean_ls']:.3f} l/s"),
                           ("OQ", lambda r: f"{r['open_quotient']:.3f}"),
                           ("closings", lambda r: str(r["closings"])),
-                          ("leakage", lambda r: f"{100 * r['closed_leakage']:.2f} %")], rows)
+                          ("leakage", lambda r: f"{100 * r['closed_leakage']:.2f} %"),
+                          ("SHR flow", lambda r: f"{r['shr_flow']:.3f}")], rows)

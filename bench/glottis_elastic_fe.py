@@ -64,8 +64,8 @@ import sys
 
 import numpy as np
 
-from benchlib import (MPI_ENV, glottal_cycles, print_markdown_table, read_float_rows, results_dir,
-                      subharmonic_ratio, timed_run, upward_crossings, write_rows)
+from benchlib import (MPI_ENV, glottal_cycles, pair_sem, print_markdown_table, read_float_rows,
+                      results_dir, subharmonic_ratio, timed_run, upward_crossings, write_rows)
 
 args = [a for a in sys.argv[1:] if not a.startswith("--")]
 here = os.path.dirname(os.path.abspath(__file__))
@@ -242,14 +242,6 @@ if "--subharmonics" in sys.argv:
          lambda r, k=f"shr_{1e3 * a:.0f}_{1e3 * b:.0f}ms": "–" if np.isnan(r[k]) else f"{r[k]:.3f}")
         for a, b in windows], hrows)
     sys.exit(0)
-
-
-def pair_sem(peaks):
-    """The standard error of the mean of the cycle peaks. The cycles
-    alternate large/small, so the spread is taken over the means of
-    consecutive pairs of cycles (nan with fewer than two pairs)."""
-    pairs = np.reshape(peaks[:len(peaks) // 2 * 2], (-1, 2)).mean(axis=1)
-    return float(np.std(pairs, ddof=1) / np.sqrt(len(pairs))) if len(pairs) > 1 else float("nan")
 
 
 def settled_cycles(folder):
