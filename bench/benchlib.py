@@ -99,6 +99,14 @@ def subharmonic_ratio(t, x, starts, f_max=1000.0):
             / sum(component(2 * M * k) for k in range(1, K + 1)))
 
 
+def interleaved(cases, rounds):
+    """(round, case) for timing runs in interleaved rounds, rounds counted
+    from 1: the machines here drift in speed between runs, so the order
+    reverses from round to round and runs are compared within a round."""
+    return [(k + 1, case) for k in range(rounds)
+            for case in (cases if k % 2 == 0 else cases[::-1])]
+
+
 def pair_sem(peaks):
     """The standard error of the mean of the cycle peaks. The elastic
     fold's cycles alternate large/small, so the spread is taken over the

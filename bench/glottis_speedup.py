@@ -33,7 +33,7 @@ import subprocess
 
 import numpy as np
 
-from benchlib import MPI_ENV, results_dir, glottal_cycles, print_markdown_table, read_float_rows, write_rows
+from benchlib import MPI_ENV, glottal_cycles, interleaved, print_markdown_table, read_float_rows, results_dir, write_rows
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.join(here, "..")
@@ -122,12 +122,11 @@ print_markdown_table([
     ("largest ΔQ step", lambda r: f"{r['max_jump_pct']:.1f} %")], rows)
 
 timing = []
-for k in range(args.rounds):
-    for case in (args.timing_cases if k % 2 == 0 else args.timing_cases[::-1]):
-        run = os.path.join(out, f"run_glottis_speedup_timing_{case}_{k + 1}")
-        s, wall = run_case(case, run, args.timing_duration)
-        timing.append({"case": case, "round": k + 1, "wall_s": wall,
-                       "time_loop_s": s["timings"]["glottis: time loop"]["wall_s"]})
+for k, case in interleaved(args.timing_cases, args.rounds):
+    run = os.path.join(out, f"run_glottis_speedup_timing_{case}_{k}")
+    s, wall = run_case(case, run, args.timing_duration)
+    timing.append({"case": case, "round": k, "wall_s": wall,
+                   "time_loop_s": s["timings"]["glottis: time loop"]["wall_s"]})
 if timing:
     write_rows(os.path.join(out, "glottis_speedup_timing.csv"), timing)
     base = {r["round"]: r for r in timing if r["case"] == args.timing_cases[0]}

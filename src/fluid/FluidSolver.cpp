@@ -53,6 +53,10 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
   p.add("fluid.tau_step", tau_step,
         "the step in tau_m's transient term (2/dt_tau)^2 [s] (0: the run's "
         "dt; fixed: tau_m does not change with dt or at a cut step)");
+  p.add("fluid.tau_porous", tau_porous,
+        "SUPG/PSPG tau_m with the porous term (sigma_p chi/rho)^2 (the "
+        "iterative solver needs it where the porous region closes the "
+        "channel)");
   p.add("fluid.picard", picard, "linear solves per time step (1: Oseen)");
   p.add("fluid.picard_tol", picard_tol, "Picard tolerance on |dv|/|v|");
   p.add("fluid.sigma_p", sigma_p, "porous inverse permeability [kg/(m^3 s)]");
@@ -190,6 +194,7 @@ void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
          {"pspg", constant(p.pspg ? 1.0 : 0.0)},
          {"graddiv", constant(p.graddiv ? 1.0 : 0.0)},
          {"sigma_p", constant(p.sigma_p)},
+         {"tau_porous", constant(p.tau_porous ? 1.0 : 0.0)},
          {"inv_eps", constant(p.inlet_eps > 0 ? 1.0 / p.inlet_eps : 0.0)},
          {"p_in", _p_in},
          {"p_out", constant(p.p_out)}};
@@ -436,12 +441,27 @@ int fsai::fluid::FluidSolver::solve(bool repeat)
         KSPGetConvergedReason(_solver.ksp(), &reason);
         _solves_since_setup = 1;
       }
+      if (_par.solver == "iterative")
+      {
+        PetscInt its = 0;
+        KSPGetIterationNumber(_solver.ksp(), &its);
+        _krylov_its += its;
+        ++_krylov_solves;
+      }
     }
     if (reason < 0)
     {
+      // E20: without θ_P the selfp Schur approximation is indefinite in a
+      // closed porous region
+      const bool hint = _par.solver == "iterative" and _par.sigma_p > 0
+                        and !_par.tau_porous;
       throw std::runtime_error(fmt::format(
-          "fluid: linear solve failed at t = {:.6g} s (KSPConvergedReason {})",
-          _t, int(reason)));
+          "fluid: linear solve failed at t = {:.6g} s (KSPConvergedReason "
+          "{}){}",
+          _t, int(reason),
+          hint ? "; the iterative solver needs --fluid.tau_porous where the "
+                 "porous region closes the channel (docs/model.md E20)"
+               : ""));
     }
     _up->x()->scatter_fwd();
   }

@@ -50,6 +50,15 @@ struct FluidParameters
   /// stays the same when Δt is halved or a step is cut, so that a Δt
   /// study measures the time discretisation alone
   double tau_step = 0.0;
+  /// τ_m also holds the porous reaction (σ_P χ/ρ)² (E20), as in stabilised
+  /// Brinkman–Darcy flow. Without it, in Ω^P the PSPG coupling τ_m σ_P/ρ is
+  /// about 40 and PSPG nearly cancels the exact Schur complement there;
+  /// the selfp approximation (diag(A_uu)⁻¹, twice the lumped mass's
+  /// inverse) is then negative in Ω^P, and the "iterative" solver's
+  /// FGMRES stalls once the porous region closes the channel (the
+  /// glottis at closure). Off by default: the validated runs were made
+  /// without it
+  bool tau_porous = false;
   int picard = 1;           ///< linear solves per time step (1: Oseen)
   double picard_tol = 1e-6; ///< on |Δv|/|v| when picard > 1 or steady
   double sigma_p = 0.0;     ///< porous inverse permeability [kg/(m³ s)]
@@ -58,7 +67,7 @@ struct FluidParameters
   double p_out = 0.0;       ///< outlet reference pressure [Pa]
   /// "direct" (MUMPS LU) or "iterative" (FGMRES, Schur fieldsplit with
   /// BoomerAMG on the velocity block and on the selfp pressure Schur
-  /// complement: for 3D)
+  /// complement: for 3D; through a closed porous region with tau_porous)
   std::string solver = "direct";
   /// Velocity-block preconditioner of "iterative": "amg" (BoomerAMG, works
   /// for steady and transient flow) or "ilu" (block-Jacobi ILU(0): cheaper
@@ -183,6 +192,9 @@ public:
   /// those that fell back to a fresh one (FluidParameters::refine_rtol)
   int refined_solves() const { return _refined; }
   int refine_fallbacks() const { return _refine_fallbacks; }
+  /// "iterative": Krylov iterations summed over the solves, and the solves
+  std::int64_t krylov_iterations() const { return _krylov_its; }
+  int krylov_solves() const { return _krylov_solves; }
   /// The accepted state (velocity and pressure, the BDF history, time and
   /// step count) into a checkpoint (entries prefix + "..."; fields by mesh
   /// node, io/field_state.h) and back from all the checkpoint's ranks
@@ -250,6 +262,8 @@ private:
   std::vector<double> _up_iterate;
   /// Repeated-step solves refined / that fell back to a factorisation
   int _refined = 0, _refine_fallbacks = 0;
+  std::int64_t _krylov_its = 0;
+  int _krylov_solves = 0;
   // Set-up steps of the constructor
   void create_spaces(std::shared_ptr<dolfinx::mesh::Mesh> mesh);
   void create_forms(std::shared_ptr<dolfinx::mesh::Mesh> mesh,

@@ -183,6 +183,7 @@ public:
                const std::vector<io::RankState>& fields) override;
   std::vector<io::TimeSeriesWriter::Field> flow_fields() const override;
   void describe(io::RunSummary& summary) override;
+  void report(io::RunSummary& summary) const override;
   const TwoDofFold& fold() const { return _fold; }
   /// The flow side: mesh, flow, mesh motion, output fields
   const FlowChannel& channel() const { return _channel; }

@@ -110,6 +110,17 @@ void fsai::glottis::FlowGlottis::describe(io::RunSummary& summary)
   summary.set("flow_dofs", _channel.describe());
   describe_two_dof(_profile, _fold, _contact, summary);
 }
+//-----------------------------------------------------------------------------
+void fsai::glottis::FlowGlottis::report(io::RunSummary& summary) const
+{
+  // The iterative flow solver's Krylov iterations per solve
+  const auto& flow = _channel.flow();
+  if (flow.krylov_solves() > 0)
+  {
+    summary.set("krylov_iterations_mean", double(flow.krylov_iterations())
+                                              / double(flow.krylov_solves()));
+  }
+}
 
 // Bernoulli flow, elastic fold
 //-----------------------------------------------------------------------------
