@@ -43,6 +43,8 @@ CASES = {
     "direct_tau": (["--fluid.tau_porous"], 0.1),
     "iterative": (ITERATIVE, 0.02),
     "iterative_tau": (ITERATIVE + ["--fluid.tau_porous"], 0.1),
+    # the same at 800 Pa (a weaker jet): through two closures and reopenings?
+    "iterative_tau_800": (ITERATIVE + ["--fluid.tau_porous", "--p-sub", "800"], 0.03),
     # the same with an exact (LU) solve of the selfp Schur approximation
     # instead of its AMG V-cycle: is it the approximation or its AMG?
     "iterative_tau_schur_lu": (ITERATIVE + ["--fluid.tau_porous", "-fluid_fieldsplit_p_pc_type", "lu",
