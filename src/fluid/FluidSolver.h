@@ -192,9 +192,14 @@ public:
   /// those that fell back to a fresh one (FluidParameters::refine_rtol)
   int refined_solves() const { return _refined; }
   int refine_fallbacks() const { return _refine_fallbacks; }
-  /// "iterative": Krylov iterations summed over the solves, and the solves
-  std::int64_t krylov_iterations() const { return _krylov_its; }
+  /// "iterative": the solves, and their mean Krylov iterations (0 before
+  /// the first)
   int krylov_solves() const { return _krylov_solves; }
+  double krylov_iterations_mean() const
+  {
+    return _krylov_solves > 0 ? double(_krylov_its) / double(_krylov_solves)
+                              : 0.0;
+  }
   /// The accepted state (velocity and pressure, the BDF history, time and
   /// step count) into a checkpoint (entries prefix + "..."; fields by mesh
   /// node, io/field_state.h) and back from all the checkpoint's ranks

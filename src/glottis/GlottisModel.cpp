@@ -117,8 +117,7 @@ void fsai::glottis::FlowGlottis::report(io::RunSummary& summary) const
   const auto& flow = _channel.flow();
   if (flow.krylov_solves() > 0)
   {
-    summary.set("krylov_iterations_mean", double(flow.krylov_iterations())
-                                              / double(flow.krylov_solves()));
+    summary.set("krylov_iterations_mean", flow.krylov_iterations_mean());
   }
 }
 
