@@ -138,4 +138,21 @@ flux = dot(v_h, n) * ds(1)
 # ∫|∇p|²: grows with spurious pressure modes (P1/P1 without PSPG)
 grad_p_sq = inner(grad(p_h), grad(p_h)) * dx4
 
-forms = [a, L, F_res, a_q2, L_q2, F_res_q2, flux, grad_p_sq]
+# Pressure convection–diffusion (PCD) Schur approximation of the iterative
+# solver (docs/model.md E20b), on the pressure space: the Laplacian K_p, the
+# velocity block's operator acting on pressures F_p (transient, porous,
+# viscous, convective and SUPG streamline-diffusion terms, with the same b
+# and τ_m as the system), the lumped mass m_p and the div-div weight g_p
+# (∫ ρ τ_c φ_i, the augmented-Lagrangian part of the Schur complement)
+Q = ufl.FunctionSpace(mesh, P1)
+p_pcd, q_pcd = ufl.TrialFunction(Q), ufl.TestFunction(Q)
+K_p = inner(grad(p_pcd), grad(q_pcd)) * dx2
+F_p = ((rho * a0 + sigma_p * chi) * p_pcd * q_pcd * dx2
+       + mu * inner(grad(p_pcd), grad(q_pcd)) * dx2
+       + rho * dot(b, grad(p_pcd)) * q_pcd * dx2
+       + supg * tau_m * rho * dot(b, grad(p_pcd)) * dot(b, grad(q_pcd)) * dx2)
+m_p = q_pcd * dx2
+g_p = graddiv * rho * tau_c * q_pcd * dx2
+
+forms = [a, L, F_res, a_q2, L_q2, F_res_q2, flux, grad_p_sq, K_p, F_p, m_p,
+         g_p]

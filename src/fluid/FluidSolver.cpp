@@ -67,6 +67,9 @@ void fsai::fluid::FluidParameters::bind(fsai::common::Parameters& p)
                "linear solver: MUMPS LU, or Schur fieldsplit + AMG (3D)");
   p.add_choice("fluid.velocity_pc", velocity_pc, {"amg", "ilu"},
                "iterative solver: velocity-block preconditioner");
+  p.add_choice("fluid.schur", schur, {"selfp", "pcd"},
+               "iterative solver: Schur-complement approximation (pcd: "
+               "pressure convection-diffusion, holds in the glottal jet)");
   p.add("fluid.ksp_rtol", ksp_rtol,
         "iterative solver: relative tolerance (the previous step's solution "
         "is the initial guess)");
@@ -233,6 +236,26 @@ void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
   _F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       q2 ? fluid_forms::F_res_q2(tdim, 1) : fluid_forms::F_res(tdim, 1), {_W},
       coeffs, c, sd));
+
+  // The PCD Schur approximation's operators (E20b), p = 0 where the
+  // pressure is natural
+  if (p.solver == "iterative" and p.schur == "pcd")
+  {
+    auto form = [&](ufcx_form& f, bool bilinear)
+    {
+      return std::make_shared<const fem::Form<double>>(fem::create_form<double>(
+          f, bilinear ? std::vector{_Q, _Q} : std::vector{_Q}, coeffs, c, {}));
+    };
+    _pcd_forms = {form(fluid_forms::K_p(tdim, 1), true),
+                  form(fluid_forms::F_p(tdim, 1), true),
+                  form(fluid_forms::m_p(tdim, 1), false),
+                  form(fluid_forms::g_p(tdim, 1), false)};
+    std::vector<std::int32_t> natural = bnd.inlet_penalty;
+    natural.insert(natural.end(), bnd.outlet.begin(), bnd.outlet.end());
+    std::sort(natural.begin(), natural.end());
+    natural.erase(std::unique(natural.begin(), natural.end()), natural.end());
+    _natural_p = fem::locate_dofs_topological(*_Q, fdim, natural);
+  }
 }
 //-----------------------------------------------------------------------------
 void fsai::fluid::FluidSolver::create_dirichlet_conditions(
@@ -300,7 +323,12 @@ void fsai::fluid::FluidSolver::configure_solver()
     PCSetType(pc, PCFIELDSPLIT);
     PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR);
     PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER);
-    PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr);
+    // With PCD the Schur block's matrix is only a placeholder (A_pp):
+    // selfp's product would be formed for nothing
+    PCFieldSplitSetSchurPre(pc,
+                            p.schur == "pcd" ? PC_FIELDSPLIT_SCHUR_PRE_A11
+                                             : PC_FIELDSPLIT_SCHUR_PRE_SELFP,
+                            nullptr);
     // (the blocks' KSPs exist only after the first setup: see solve())
   }
   _solver.set_options_prefix("fluid_");
@@ -327,6 +355,20 @@ void fsai::fluid::FluidSolver::configure_solver()
                       PETSC_COPY_VALUES, &is);
       PCFieldSplitSetIS(pc, name, is);
       ISDestroy(&is);
+      if (sub == &_map_p and _pcd_forms[0])
+      {
+        // The Schur block's k-th local entry is the mixed dof local[k]:
+        // its dof in the collapsed pressure space
+        std::vector<std::int32_t> collapsed(owned, -1), order;
+        for (std::size_t j = 0; j < _map_p.size(); ++j)
+          if (_map_p[j] < owned)
+            collapsed[_map_p[j]] = std::int32_t(j);
+        for (std::int32_t d : local)
+          order.push_back(collapsed[d]);
+        _pcd = std::make_unique<PressureConvectionDiffusion>(
+            _Q, _pcd_forms[0], _pcd_forms[1], _pcd_forms[2], _pcd_forms[3],
+            _natural_p, std::move(order));
+      }
     }
     _configure_blocks = true;
   }
@@ -366,8 +408,11 @@ void fsai::fluid::FluidSolver::configure_blocks()
     PC sub_pc;
     KSPGetPC(sub[i], &sub_pc);
     // bjacobi's blocks default to ILU(0)
-    PCSetType(sub_pc,
-              (i == 0 and _par.velocity_pc == "ilu") ? PCBJACOBI : PCHYPRE);
+    if (i == 1 and _pcd)
+      _pcd->attach(sub_pc);
+    else
+      PCSetType(sub_pc,
+                (i == 0 and _par.velocity_pc == "ilu") ? PCBJACOBI : PCHYPRE);
     KSPSetFromOptions(sub[i]);
   }
   PetscFree(sub);
@@ -413,6 +458,8 @@ int fsai::fluid::FluidSolver::solve(bool repeat)
                        and _solves_since_setup > 0
                        and _solves_since_setup < _par.pc_lag;
     KSPSetReusePreconditioner(_solver.ksp(), reuse ? PETSC_TRUE : PETSC_FALSE);
+    if (_pcd and !reuse)
+      _pcd->assemble();
     _solver.set_operator(_A.mat());
     if (_configure_blocks)
       configure_blocks();
@@ -436,6 +483,8 @@ int fsai::fluid::FluidSolver::solve(bool repeat)
         std::copy(guess.begin(), guess.end(),
                   _up->x()->mutable_array().begin());
         KSPSetReusePreconditioner(_solver.ksp(), PETSC_FALSE);
+        if (_pcd)
+          _pcd->assemble();
         _solver.set_operator(_A.mat());
         _solver.solve(x.vec(), bb.vec());
         KSPGetConvergedReason(_solver.ksp(), &reason);
@@ -452,16 +501,18 @@ int fsai::fluid::FluidSolver::solve(bool repeat)
     if (reason < 0)
     {
       // E20: without θ_P the selfp Schur approximation is indefinite in a
-      // closed porous region
-      const bool hint = _par.solver == "iterative" and _par.sigma_p > 0
-                        and !_par.tau_porous;
+      // closed porous region; E20b: AMG on selfp diverges in a strong jet
+      std::string hint;
+      if (_par.solver == "iterative" and _par.sigma_p > 0 and !_par.tau_porous)
+        hint = "; the iterative solver needs --fluid.tau_porous where the "
+               "porous region closes the channel (docs/model.md E20)";
+      else if (_par.solver == "iterative" and _par.schur == "selfp")
+        hint = "; AMG on the selfp Schur approximation diverges in strong "
+               "jets: --fluid.schur pcd holds there (docs/model.md E20b)";
       throw std::runtime_error(fmt::format(
           "fluid: linear solve failed at t = {:.6g} s (KSPConvergedReason "
           "{}){}",
-          _t, int(reason),
-          hint ? "; the iterative solver needs --fluid.tau_porous where the "
-                 "porous region closes the channel (docs/model.md E20)"
-               : ""));
+          _t, int(reason), hint));
     }
     _up->x()->scatter_fwd();
   }

@@ -10,6 +10,7 @@
 // (common::CooMatrixAssembler; --fluid.assembly dolfinx for DOLFINx's own).
 #pragma once
 
+#include "PressureConvectionDiffusion.h"
 #include <array>
 #include <common/CooMatrixAssembler.h>
 #include <dolfinx/fem/Constant.h>
@@ -66,14 +67,20 @@ struct FluidParameters
   double p_in = 0.0;        ///< inlet reference pressure [Pa]
   double p_out = 0.0;       ///< outlet reference pressure [Pa]
   /// "direct" (MUMPS LU) or "iterative" (FGMRES, Schur fieldsplit with
-  /// BoomerAMG on the velocity block and on the selfp pressure Schur
-  /// complement: for 3D; through a closed porous region with tau_porous)
+  /// BoomerAMG on the velocity block and the Schur approximation `schur`:
+  /// for 3D; through a closed porous region with tau_porous, E20b)
   std::string solver = "direct";
   /// Velocity-block preconditioner of "iterative": "amg" (BoomerAMG, works
   /// for steady and transient flow) or "ilu" (block-Jacobi ILU(0): cheaper
   /// when the mass term ρ a0 M dominates the block, i.e. transient runs at
   /// moderate CFL; poor for steady problems)
   std::string velocity_pc = "amg";
+  /// Schur-complement approximation of "iterative" (docs/model.md E20b):
+  /// "selfp" (AMG on C + D diag(A)⁻¹ Dᵀ) or "pcd" (pressure
+  /// convection–diffusion, fluid::PressureConvectionDiffusion: only a
+  /// pressure Laplacian meets AMG, so it holds in the glottal jet, where
+  /// AMG on selfp diverges; needs a penalty inlet or an outlet)
+  std::string schur = "selfp";
   double ksp_rtol = 1e-8; ///< "iterative": relative to |b|
   /// "iterative": the preconditioner is rebuilt for every pc_lag-th solve
   /// and kept in between (1: every solve). The Krylov solve still
@@ -300,6 +307,11 @@ private:
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
   std::vector<std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>>> _tags;
   std::shared_ptr<dolfinx::fem::Form<double>> _a, _L, _F;
+  /// --fluid.schur pcd: forms/fluid.py's K_p, F_p, m_p, g_p, the pressure
+  /// dofs on natural-pressure boundaries, and the preconditioner
+  std::array<std::shared_ptr<const dolfinx::fem::Form<double>>, 4> _pcd_forms;
+  std::vector<std::int32_t> _natural_p;
+  std::unique_ptr<PressureConvectionDiffusion> _pcd;
   dolfinx::la::petsc::Matrix _A;
   std::unique_ptr<common::CooMatrixAssembler> _coo; // assembly "coo"
   dolfinx::la::petsc::KrylovSolver _solver;
