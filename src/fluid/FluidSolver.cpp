@@ -30,6 +30,20 @@ std::size_t owned_entries(const dolfinx::fem::Function<double>& f)
   return std::size_t(map.size_local()) * f.x()->bs();
 }
 
+// The owned dofs of a collapsed subspace (sub: its dof → the mixed space's
+// local dof) in a fieldsplit's order, the mixed space's local numbering
+std::vector<std::int32_t> split_order(const std::vector<std::int32_t>& sub,
+                                      std::int32_t owned)
+{
+  std::vector<std::int32_t> order;
+  for (std::size_t j = 0; j < sub.size(); ++j)
+    if (sub[j] < owned)
+      order.push_back(std::int32_t(j));
+  std::sort(order.begin(), order.end(),
+            [&](std::int32_t i, std::int32_t j) { return sub[i] < sub[j]; });
+  return order;
+}
+
 // 1/Δt_τ of τ_m's transient term (E20): the run's step, a fixed one, or
 // none (the steady τ_m)
 double inverse_tau_step(const fsai::fluid::FluidParameters& p, double dt)
@@ -237,8 +251,8 @@ void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
       q2 ? fluid_forms::F_res_q2(tdim, 1) : fluid_forms::F_res(tdim, 1), {_W},
       coeffs, c, sd));
 
-  // The PCD Schur approximation's operators (E20b), p = 0 where the
-  // pressure is natural
+  // The PCD Schur approximation (E20b) on the pressure dofs in the
+  // fieldsplit's order, p = 0 where the pressure is natural
   if (p.solver == "iterative" and p.schur == "pcd")
   {
     auto form = [&](ufcx_form& f, bool bilinear)
@@ -246,15 +260,17 @@ void fsai::fluid::FluidSolver::create_forms(std::shared_ptr<mesh::Mesh> mesh,
       return std::make_shared<const fem::Form<double>>(fem::create_form<double>(
           f, bilinear ? std::vector{_Q, _Q} : std::vector{_Q}, coeffs, c, {}));
     };
-    _pcd_forms = {form(fluid_forms::K_p(tdim, 1), true),
-                  form(fluid_forms::F_p(tdim, 1), true),
-                  form(fluid_forms::m_p(tdim, 1), false),
-                  form(fluid_forms::g_p(tdim, 1), false)};
     std::vector<std::int32_t> natural = bnd.inlet_penalty;
     natural.insert(natural.end(), bnd.outlet.begin(), bnd.outlet.end());
     std::sort(natural.begin(), natural.end());
     natural.erase(std::unique(natural.begin(), natural.end()), natural.end());
-    _natural_p = fem::locate_dofs_topological(*_Q, fdim, natural);
+    _pcd = std::make_unique<PressureConvectionDiffusion>(
+        _Q, form(fluid_forms::K_p(tdim, 1), true),
+        form(fluid_forms::F_p(tdim, 1), true),
+        form(fluid_forms::m_p(tdim, 1), false),
+        form(fluid_forms::g_p(tdim, 1), false),
+        fem::locate_dofs_topological(*_Q, fdim, natural),
+        split_order(_map_p, _W->dofmap()->index_map->size_local()));
   }
 }
 //-----------------------------------------------------------------------------
@@ -343,10 +359,8 @@ void fsai::fluid::FluidSolver::configure_solver()
     for (auto [name, sub] : {std::pair{"u", &_map_v}, {"p", &_map_p}})
     {
       std::vector<std::int32_t> local;
-      for (std::int32_t d : *sub)
-        if (d < owned)
-          local.push_back(d);
-      std::sort(local.begin(), local.end());
+      for (std::int32_t j : split_order(*sub, owned))
+        local.push_back((*sub)[j]);
       std::vector<std::int64_t> global(local.size());
       map->local_to_global(local, global);
       std::vector<PetscInt> idx(global.begin(), global.end());
@@ -355,23 +369,11 @@ void fsai::fluid::FluidSolver::configure_solver()
                       PETSC_COPY_VALUES, &is);
       PCFieldSplitSetIS(pc, name, is);
       ISDestroy(&is);
-      if (sub == &_map_p and _pcd_forms[0])
-      {
-        // The Schur block's k-th local entry is the mixed dof local[k]:
-        // its dof in the collapsed pressure space
-        std::vector<std::int32_t> collapsed(owned, -1), order;
-        for (std::size_t j = 0; j < _map_p.size(); ++j)
-          if (_map_p[j] < owned)
-            collapsed[_map_p[j]] = std::int32_t(j);
-        for (std::int32_t d : local)
-          order.push_back(collapsed[d]);
-        _pcd = std::make_unique<PressureConvectionDiffusion>(
-            _Q, _pcd_forms[0], _pcd_forms[1], _pcd_forms[2], _pcd_forms[3],
-            _natural_p, std::move(order));
-      }
     }
     _configure_blocks = true;
   }
+  else
+    _pcd.reset(); // the options database chose another preconditioner
 }
 //-----------------------------------------------------------------------------
 std::int64_t fsai::fluid::FluidSolver::dofs() const

@@ -307,10 +307,7 @@ private:
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
   std::vector<std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>>> _tags;
   std::shared_ptr<dolfinx::fem::Form<double>> _a, _L, _F;
-  /// --fluid.schur pcd: forms/fluid.py's K_p, F_p, m_p, g_p, the pressure
-  /// dofs on natural-pressure boundaries, and the preconditioner
-  std::array<std::shared_ptr<const dolfinx::fem::Form<double>>, 4> _pcd_forms;
-  std::vector<std::int32_t> _natural_p;
+  /// --fluid.schur pcd: the Schur block's preconditioner
   std::unique_ptr<PressureConvectionDiffusion> _pcd;
   dolfinx::la::petsc::Matrix _A;
   std::unique_ptr<common::CooMatrixAssembler> _coo; // assembly "coo"
