@@ -1,8 +1,10 @@
 // Copyright (C) 2026 fsai developers
 #include "PartitionedFsi.h"
+#include "../common/errors.h"
 #include "../common/timer.h"
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/utils.h>
+#include <fmt/format.h>
 #include <fsai_forms/ale.h>
 
 using namespace dolfinx;
@@ -12,9 +14,9 @@ fsai::coupling::PartitionedFsi::PartitionedFsi(
     fluid::FluidSolver& flow, structure::ElasticSolver& solid,
     ale::MeshMotion& motion, const InterfaceMap& map,
     std::span<const std::int32_t> fluid_interface, const CouplingParameters& p,
-    const std::string& csv_path)
+    const std::string& csv_path, std::size_t csv_rows_kept)
     : _flow(flow), _solid(solid), _motion(motion), _map(map),
-      _loop(flow.velocity_space()->mesh()->comm(), p, csv_path)
+      _loop(flow.velocity_space()->mesh()->comm(), p, csv_path, csv_rows_kept)
 {
   if (std::abs(flow.dt() - solid.dt()) > 1e-12 * flow.dt())
     throw std::runtime_error("FSI: the flow and structure time steps differ");
@@ -119,4 +121,36 @@ fsai::coupling::StepReport fsai::coupling::PartitionedFsi::step(double t)
   _x_n = x;
   ++_accepted;
   return rep;
+}
+//-----------------------------------------------------------------------------
+void fsai::coupling::PartitionedFsi::save(io::RankState& state,
+                                          const std::string& prefix) const
+{
+  state[prefix + "x_n"] = _x_n;
+  state[prefix + "x_nn"] = _x_nn;
+  state[prefix + "accepted"] = {double(_accepted)};
+}
+//-----------------------------------------------------------------------------
+void fsai::coupling::PartitionedFsi::load(
+    const std::vector<io::RankState>& ranks, const std::string& prefix)
+{
+  MPI_Comm comm = _flow.velocity_space()->mesh()->comm();
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  if (int(ranks.size()) != size)
+    throw fsai::InputError(
+        fmt::format("restart: the checkpoint was written on {} "
+                    "ranks; restart it on as many (now {})",
+                    ranks.size(), size));
+  const auto& r = ranks[rank];
+  const auto& x_n = io::state_entry(r, prefix + "x_n");
+  const auto& x_nn = io::state_entry(r, prefix + "x_nn");
+  if (x_n.size() != _x_n.size() or x_nn.size() != _x_nn.size())
+    throw fsai::InputError("restart: the checkpoint's interface does not fit "
+                           "this mesh");
+  _x_n = x_n;
+  _x_nn = x_nn;
+  _accepted = int(io::state_entry(r, prefix + "accepted").at(0));
+  _loop.clear_history();
 }

@@ -30,14 +30,27 @@ class PartitionedFsi
 public:
   /// @param[in] fluid_interface Fluid facets of the interface (local)
   /// @param[in] csv_path Per-step coupling log (empty: none)
+  /// @param[in] csv_rows_kept Rows of an existing log kept (a restart:
+  ///   io::RunLoop::rows_kept()); npos: a new log
   PartitionedFsi(fluid::FluidSolver& flow, structure::ElasticSolver& solid,
                  ale::MeshMotion& motion, const InterfaceMap& map,
                  std::span<const std::int32_t> fluid_interface,
-                 const CouplingParameters& p, const std::string& csv_path);
+                 const CouplingParameters& p, const std::string& csv_path,
+                 std::size_t csv_rows_kept = std::string::npos);
 
   /// Advance flow, structure and mesh from t − Δt to t (the flow's and the
   /// solid's Δt must agree)
   StepReport step(double t);
+
+  /// The accepted interface displacements of the last two steps (the
+  /// predictor's) into / from a checkpoint of the same rank count; the
+  /// accelerator's reused columns are not kept (a restarted step starts
+  /// without them, as after clear_history())
+  void save(io::RankState& state, const std::string& prefix) const;
+  void load(const std::vector<io::RankState>& ranks, const std::string& prefix);
+  /// Forget the accelerator's columns of earlier steps (at a checkpoint,
+  /// so that a restarted run continues as the uninterrupted one)
+  void clear_history() { _loop.clear_history(); }
 
 private:
   fluid::FluidSolver& _flow;

@@ -278,7 +278,7 @@ void fsai::fluid::FluidSolver::create_dirichlet_conditions(
     const FluidBoundaries& bnd)
 {
   const int fdim = _W->mesh()->topology().dim() - 1;
-  // Dirichlet: walls (v = wall velocity), Dirichlet inlet, symmetry v_y = 0
+  // Dirichlet: walls (v = wall velocity), Dirichlet inlet, symmetry v_c = 0
   auto W0 = _W->sub({0});
   auto vec_bc = [&](const std::vector<std::int32_t>& facets,
                     std::shared_ptr<fem::Function<double>> g)
@@ -290,7 +290,7 @@ void fsai::fluid::FluidSolver::create_dirichlet_conditions(
   vec_bc(bnd.walls, _v_wall);
   vec_bc(bnd.inlet_dirichlet, _v_in);
   {
-    auto W01 = _W->sub({0})->sub({1});
+    auto W01 = _W->sub({0})->sub({bnd.symmetry_component});
     auto dofs = fem::locate_dofs_topological(*W01, fdim, bnd.symmetry);
     _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
         std::make_shared<fem::Constant<double>>(0.0), std::move(dofs), W01));

@@ -129,7 +129,8 @@ struct FluidBoundaries
   std::vector<std::int32_t> inlet_penalty;   ///< E11a (needs inlet_eps > 0)
   std::vector<std::int32_t> outlet;          ///< E11c directional do-nothing
   std::vector<std::int32_t> walls;           ///< v = wall_velocity() (0 or w_D)
-  std::vector<std::int32_t> symmetry;        ///< v_y = 0 (axis y = const)
+  std::vector<std::int32_t> symmetry; ///< v_c = 0 (plane normal to axis c)
+  int symmetry_component = 1;         ///< c: 1 for the 2D axis y = const
 };
 
 /// The boundaries of fsai::mesh::dfg_channel by its facet tags (m: its

@@ -242,40 +242,12 @@ fsai::mesh::FluidSolidMeshes fsai::mesh::channel_flap_3d(MPI_Comm comm,
         }
         if (fluid.size() != 1 or solid.size() != 1)
           throw std::runtime_error("3D flap channel: unexpected fragments");
-        auto faces = [](int volume)
-        {
-          gmsh::vectorpair b;
-          gmsh::model::getBoundary({{3, volume}}, b, false, false, false);
-          std::set<int> f;
-          for (auto [d, t] : b)
-            f.insert(std::abs(t));
-          return f;
-        };
-        const std::set<int> ff = faces(fluid[0]), fs = faces(solid[0]);
-        std::map<std::string, std::vector<int>> groups;
-        for (int f : ff)
-        {
-          double cx, cy, cz;
-          occ::getCenterOfMass(2, f, cx, cy, cz);
-          groups[fs.count(f)     ? "interface"
-                 : cx < 1e-9     ? "inlet"
-                 : cx > 1 - 1e-9 ? "outlet"
-                                 : "walls"]
-              .push_back(f);
-        }
-        for (int f : fs)
-          if (!ff.count(f))
-            groups["clamped"].push_back(f);
-        int id = 1;
-        for (auto& [name, g] : groups)
-        {
-          gmsh::model::addPhysicalGroup(2, g, id);
-          gmsh::model::setPhysicalName(2, id++, name);
-        }
-        gmsh::model::addPhysicalGroup(3, fluid, 1);
-        gmsh::model::setPhysicalName(3, 1, "fluid");
-        gmsh::model::addPhysicalGroup(3, solid, 2);
-        gmsh::model::setPhysicalName(3, 2, "solid");
+        tag_fluid_solid_3d(fluid[0], solid[0],
+                           [](const std::array<double, 3>& c) -> std::string {
+                             return c[0] < 1e-9       ? "inlet"
+                                    : c[0] > 1 - 1e-9 ? "outlet"
+                                                      : "walls";
+                           });
         gmsh::option::setNumber("Mesh.MeshSizeMax", h);
         gmsh::option::setNumber("Mesh.MeshSizeMin", h / 4);
         gmsh::model::mesh::generate(3);

@@ -12,6 +12,7 @@
 #include <dolfinx/mesh/utils.h>
 #include <filesystem>
 #include <gmsh.h>
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -489,3 +490,40 @@ int fsai::mesh::MeshData::cell_tag(const std::string& name) const
   return lookup(cell_names, "cell", name);
 }
 //-----------------------------------------------------------------------------
+//-----------------------------------------------------------------------------
+std::set<int> fsai::mesh::tag_fluid_solid_3d(
+    int fluid, int solid,
+    const std::function<std::string(const std::array<double, 3>&)>& name_of)
+{
+  auto faces = [](int volume)
+  {
+    gmsh::vectorpair b;
+    gmsh::model::getBoundary({{3, volume}}, b, false, false, false);
+    std::set<int> f;
+    for (auto [d, t] : b)
+      f.insert(std::abs(t));
+    return f;
+  };
+  const std::set<int> ff = faces(fluid), fs = faces(solid);
+  std::map<std::string, std::vector<int>> groups;
+  for (int f : ff)
+  {
+    std::array<double, 3> c;
+    gmsh::model::occ::getCenterOfMass(2, f, c[0], c[1], c[2]);
+    groups[fs.count(f) ? "interface" : name_of(c)].push_back(f);
+  }
+  for (int f : fs)
+    if (!ff.count(f))
+      groups["clamped"].push_back(f);
+  int id = 1;
+  for (auto& [name, g] : groups)
+  {
+    gmsh::model::addPhysicalGroup(2, g, id);
+    gmsh::model::setPhysicalName(2, id++, name);
+  }
+  gmsh::model::addPhysicalGroup(3, {fluid}, 1);
+  gmsh::model::setPhysicalName(3, 1, "fluid");
+  gmsh::model::addPhysicalGroup(3, {solid}, 2);
+  gmsh::model::setPhysicalName(3, 2, "solid");
+  return ff;
+}

@@ -6,6 +6,7 @@
 #include <array>
 #include <functional>
 #include <mpi.h>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,15 @@ std::vector<MeshData>
 build_parts_with_gmsh(MPI_Comm comm, int gdim,
                       const std::function<void()>& build,
                       const std::vector<std::string>& parts);
+
+/// Inside a build function (rank 0), for a 3D model fragmented into one
+/// fluid and one solid volume: the physical groups "fluid" (1) and "solid"
+/// (2), and face groups — the faces both share "interface", the solid's
+/// other faces "clamped", each of the fluid's other faces the group that
+/// `name_of(centre of mass)` gives. Returns the fluid's faces
+std::set<int> tag_fluid_solid_3d(
+    int fluid, int solid,
+    const std::function<std::string(const std::array<double, 3>&)>& name_of);
 
 /// Inside a build function (rank 0): a background size field of the
 /// current model — size h_min on `curves`, growing linearly with the
