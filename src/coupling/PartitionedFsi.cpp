@@ -1,10 +1,9 @@
 // Copyright (C) 2026 fsai developers
 #include "PartitionedFsi.h"
-#include "../common/errors.h"
 #include "../common/timer.h"
+#include "../io/field_state.h"
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/utils.h>
-#include <fmt/format.h>
 #include <fsai_forms/ale.h>
 
 using namespace dolfinx;
@@ -123,34 +122,35 @@ fsai::coupling::StepReport fsai::coupling::PartitionedFsi::step(double t)
   return rep;
 }
 //-----------------------------------------------------------------------------
+std::vector<std::int64_t> fsai::coupling::PartitionedFsi::owned_keys() const
+{
+  // Partition-independent keys of the owned interface dof blocks: the
+  // restart's partition (and rank count) may differ
+  const auto all = io::node_keys(*_flow.velocity_space());
+  std::vector<std::int64_t> keys;
+  for (auto d : _owned)
+    keys.push_back(all[d]);
+  return keys;
+}
+//-----------------------------------------------------------------------------
 void fsai::coupling::PartitionedFsi::save(io::RankState& state,
                                           const std::string& prefix) const
 {
-  state[prefix + "x_n"] = _x_n;
-  state[prefix + "x_nn"] = _x_nn;
+  const int bs = _flow.velocity_space()->dofmap()->index_map_bs();
+  const auto keys = owned_keys();
+  const auto n = std::int32_t(_owned.size());
+  io::put_blocks(state, prefix + "x_n", _x_n, bs, keys, n);
+  io::put_blocks(state, prefix + "x_nn", _x_nn, bs, keys, n);
   state[prefix + "accepted"] = {double(_accepted)};
 }
 //-----------------------------------------------------------------------------
 void fsai::coupling::PartitionedFsi::load(
     const std::vector<io::RankState>& ranks, const std::string& prefix)
 {
-  MPI_Comm comm = _flow.velocity_space()->mesh()->comm();
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  if (int(ranks.size()) != size)
-    throw fsai::InputError(
-        fmt::format("restart: the checkpoint was written on {} "
-                    "ranks; restart it on as many (now {})",
-                    ranks.size(), size));
-  const auto& r = ranks[rank];
-  const auto& x_n = io::state_entry(r, prefix + "x_n");
-  const auto& x_nn = io::state_entry(r, prefix + "x_nn");
-  if (x_n.size() != _x_n.size() or x_nn.size() != _x_nn.size())
-    throw fsai::InputError("restart: the checkpoint's interface does not fit "
-                           "this mesh");
-  _x_n = x_n;
-  _x_nn = x_nn;
-  _accepted = int(io::state_entry(r, prefix + "accepted").at(0));
+  const int bs = _flow.velocity_space()->dofmap()->index_map_bs();
+  const auto keys = owned_keys();
+  io::get_blocks(ranks, prefix + "x_n", _x_n, bs, keys);
+  io::get_blocks(ranks, prefix + "x_nn", _x_nn, bs, keys);
+  _accepted = int(io::state_entry(ranks.at(0), prefix + "accepted", 1)[0]);
   _loop.clear_history();
 }

@@ -43,7 +43,7 @@ public:
   StepReport step(double t);
 
   /// The accepted interface displacements of the last two steps (the
-  /// predictor's) into / from a checkpoint of the same rank count; the
+  /// predictor's) into / from a checkpoint (any partition); the
   /// accelerator's reused columns are not kept (a restarted step starts
   /// without them, as after clear_history())
   void save(io::RankState& state, const std::string& prefix) const;
@@ -66,5 +66,6 @@ private:
   std::shared_ptr<dolfinx::fem::Function<double>> _d, _F;
 
   void evaluate(double t, std::span<const double> x, std::span<double> Hx);
+  std::vector<std::int64_t> owned_keys() const;
 };
 } // namespace fsai::coupling

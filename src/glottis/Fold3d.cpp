@@ -65,16 +65,19 @@ fsai::glottis::Fold3dSetup::Fold3dSetup()
   // factorisation while it contracts
   solid.newton_reuse = true;
   fluid.inlet_eps = 1e3; // E11a with ε large: a total-pressure inlet
-  // 3D is where a factorisation per step stops scaling: FGMRES with the
-  // Schur fieldsplit and the PCD approximation, which holds in the
-  // glottal jet (E20b; docs/glottis.md, "What holds in the jet")
-  fluid.solver = "iterative";
+  // MUMPS, its factorisation refined by a step's later coupling iterates
+  // (E20a): on 2 ranks 1.44x faster per step than the iterative path at
+  // the default 56k flow unknowns and 1.23x at 150k; the two would cross
+  // near 260k (docs/fold3d.md). --fluid.solver iterative takes FGMRES
+  // with the Schur fieldsplit and the PCD approximation, which holds in
+  // the glottal jet (E20b)
+  fluid.solver = "direct";
   fluid.schur = "pcd";
   fluid.quadrature_degree = 2;
-  // Inexact flow solves stall IQN-ILS: at the default 1e-8 the coupling
-  // residual stagnated near 1e-6 relative and a step at 4.15 ms (800 Pa)
-  // failed after 50 iterations (4.9 per step before it); at 1e-10 the
-  // same start-up takes 2.5 per step (docs/fold3d.md)
+  // Inexact flow solves stall IQN-ILS: with the iterative path at 1e-8 the
+  // coupling residual stagnated near 1e-6 relative and a step at 4.15 ms
+  // (800 Pa) failed after 50 iterations (4.9 per step before it); at 1e-10
+  // the same start-up takes 2.5 per step (docs/fold3d.md)
   fluid.ksp_rtol = 1e-10;
   // The size-stiffened pseudo-elastic extension keeps the small gap cells
   // rigid while the fold moves
