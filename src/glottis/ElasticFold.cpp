@@ -130,9 +130,7 @@ fsai::glottis::ElasticFold::ElasticFold(MPI_Comm comm,
   sp.newmark_gamma = p.newmark_gamma;
   sp.newmark_beta = 0.25 * (p.newmark_gamma + 0.5) * (p.newmark_gamma + 0.5);
   sp.rho_inf = p.rho_inf;
-  const double wl = 2 * M_PI * p.f_zeta_low, wh = 2 * M_PI * p.f_zeta_high;
-  sp.rayleigh_mass = 2 * p.zeta * wl * wh / (wl + wh);
-  sp.rayleigh_stiffness = 2 * p.zeta / (wl + wh);
+  sp.set_damping_ratio(p.zeta, p.f_zeta_low, p.f_zeta_high);
   // The contact term makes the linear body's step nonlinear, but its
   // Jacobian changes only when surface dofs enter or leave the contact:
   // modified Newton keeps the factorisation while it contracts (a step

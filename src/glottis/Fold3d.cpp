@@ -129,9 +129,7 @@ void fsai::glottis::Fold3dSetup::configure(const fsai::common::Parameters& p)
   fsai::require(fold.h >= channel.h_gap, "--fold.h",
                 ">= --channel.h_gap (the interface is meshed at h_gap)",
                 fold.h);
-  // The solid's damping from ζ at f_zeta (stiffness-proportional)
-  solid.rayleigh_mass = 0;
-  solid.rayleigh_stiffness = scene.zeta / (M_PI * scene.f_zeta);
+  solid.set_damping_ratio(scene.zeta, 0.0, scene.f_zeta);
 }
 //-----------------------------------------------------------------------------
 fsai::glottis::Fold3dPhonation::Fold3dPhonation(MPI_Comm comm,
@@ -193,7 +191,7 @@ fsai::glottis::Fold3dPhonation::Fold3dPhonation(MPI_Comm comm,
     if (std::abs(X[3 * d + 2] - zc) <= band)
     {
       _gap_dofs.push_back(d);
-      _X_interface.push_back(X[3 * d]);
+      _gap_X.push_back(X[3 * d]);
     }
   }
   // The centre of the medial surface (x = depth, mid-height of its
@@ -205,10 +203,7 @@ fsai::glottis::Fold3dPhonation::Fold3dPhonation(MPI_Comm comm,
           {g.depth, g.height - g.b - 0.5 * g.t_medial, 0.5 * g.length}});
   fsai::log::info("3D fold: flow {} dofs, fold {} dofs, interface {} fluid "
                   "vertices on this rank",
-                  _flow->dofs(),
-                  _solid->space()->dofmap()->index_map->size_global()
-                      * _solid->space()->dofmap()->index_map_bs(),
-                  _map->fluid_dofs().size());
+                  _flow->dofs(), solid_dofs(), _map->fluid_dofs().size());
 }
 //-----------------------------------------------------------------------------
 fsai::glottis::Fold3dPhonation::~Fold3dPhonation() = default;
@@ -221,7 +216,7 @@ double fsai::glottis::Fold3dPhonation::smallest_gap() const
   double g = std::numeric_limits<double>::max();
   const auto& dofs = _gap_dofs;
   for (std::size_t i = 0; i < dofs.size(); ++i)
-    g = std::min(g, xm - _X_interface[i] - d[bs * dofs[i]]);
+    g = std::min(g, xm - _gap_X[i] - d[bs * dofs[i]]);
   MPI_Allreduce(MPI_IN_PLACE, &g, 1, MPI_DOUBLE, MPI_MIN, _comm);
   return g;
 }
@@ -278,10 +273,14 @@ void fsai::glottis::Fold3dPhonation::restore(
 void fsai::glottis::Fold3dPhonation::describe(io::RunSummary& summary) const
 {
   summary.set("flow_dofs", _flow->dofs());
-  summary.set("solid_dofs",
-              std::int64_t(_solid->space()->dofmap()->index_map->size_global()
-                           * _solid->space()->dofmap()->index_map_bs()));
+  summary.set("solid_dofs", solid_dofs());
   summary.set("rest_half_gap_m", _setup.channel.half_gap);
+}
+//-----------------------------------------------------------------------------
+std::int64_t fsai::glottis::Fold3dPhonation::solid_dofs() const
+{
+  const auto& im = *_solid->space()->dofmap()->index_map;
+  return im.size_global() * _solid->space()->dofmap()->index_map_bs();
 }
 //-----------------------------------------------------------------------------
 double fsai::glottis::Fold3dPhonation::krylov_iterations_mean() const

@@ -139,9 +139,10 @@ private:
   std::unique_ptr<io::PointProbes> _medial;
   // Interface dofs in the middle fifth of the length, their reference x
   std::vector<std::int32_t> _gap_dofs;
-  std::vector<double> _X_interface;
+  std::vector<double> _gap_X;
   double _t = 0;
 
   double smallest_gap() const;
+  std::int64_t solid_dofs() const;
 };
 } // namespace fsai::glottis

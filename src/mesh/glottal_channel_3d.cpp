@@ -56,20 +56,7 @@ fsai::mesh::glottal_channel_3d(MPI_Comm comm, const VocalFoldGeometry& g,
         namespace occ = gmsh::model::occ;
         gmsh::model::add("glottal_channel_3d");
         const int channel = occ::addBox(0, y0, 0, xm, y1 - y0, g.length);
-        std::vector<int> pts;
-        for (auto [x, y] : g.free_profile())
-          pts.push_back(occ::addPoint(x, y, 0.0));
-        std::vector<int> lines;
-        for (std::size_t i = 0; i + 1 < pts.size(); ++i)
-          lines.push_back(occ::addLine(pts[i], pts[i + 1]));
-        lines.push_back(occ::addLine(pts.back(), pts.front()));
-        const int s = occ::addPlaneSurface({occ::addCurveLoop(lines)});
-        gmsh::vectorpair ext;
-        occ::extrude({{2, s}}, 0.0, 0.0, g.length, ext);
-        int fold = -1;
-        for (auto [d, t] : ext)
-          if (d == 3)
-            fold = t;
+        const int fold = add_fold_body(g, 3);
         gmsh::vectorpair out;
         std::vector<gmsh::vectorpair> map;
         occ::fragment({{3, channel}}, {{3, fold}}, out, map);

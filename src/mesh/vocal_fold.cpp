@@ -7,6 +7,7 @@
 #include <dolfinx/mesh/utils.h>
 #include <gmsh.h>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 
 //-----------------------------------------------------------------------------
@@ -68,6 +69,27 @@ fsai::mesh::VocalFoldGeometry::free_profile() const
   return p;
 }
 //-----------------------------------------------------------------------------
+int fsai::mesh::add_fold_body(const VocalFoldGeometry& g, int dim)
+{
+  namespace occ = gmsh::model::occ;
+  std::vector<int> pts;
+  for (auto [x, y] : g.free_profile())
+    pts.push_back(occ::addPoint(x, y, 0.0));
+  std::vector<int> lines;
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i)
+    lines.push_back(occ::addLine(pts[i], pts[i + 1]));
+  lines.push_back(occ::addLine(pts.back(), pts.front())); // lateral wall
+  const int s = occ::addPlaneSurface({occ::addCurveLoop(lines)});
+  if (dim == 2)
+    return s;
+  gmsh::vectorpair out;
+  occ::extrude({{2, s}}, 0.0, 0.0, g.length, out);
+  for (auto [d, t] : out)
+    if (d == 3)
+      return t;
+  throw std::runtime_error("vocal fold: the profile's extrusion has no volume");
+}
+//-----------------------------------------------------------------------------
 fsai::mesh::MeshData fsai::mesh::vocal_fold(MPI_Comm comm,
                                             const VocalFoldGeometry& g, int dim)
 {
@@ -80,23 +102,7 @@ fsai::mesh::MeshData fsai::mesh::vocal_fold(MPI_Comm comm,
       {
         namespace occ = gmsh::model::occ;
         gmsh::model::add("vocal_fold");
-        std::vector<int> pts;
-        for (auto [x, y] : g.free_profile())
-          pts.push_back(occ::addPoint(x, y, 0.0));
-        std::vector<int> lines;
-        for (std::size_t i = 0; i + 1 < pts.size(); ++i)
-          lines.push_back(occ::addLine(pts[i], pts[i + 1]));
-        lines.push_back(occ::addLine(pts.back(), pts.front())); // lateral wall
-        const int s = occ::addPlaneSurface({occ::addCurveLoop(lines)});
-        int body = s;
-        if (dim == 3)
-        {
-          gmsh::vectorpair out;
-          occ::extrude({{2, s}}, 0.0, 0.0, g.length, out);
-          for (auto [d, t] : out)
-            if (d == 3)
-              body = t;
-        }
+        const int body = add_fold_body(g, dim);
         occ::synchronize();
 
         // The section's boundary: the lateral line x = 0 and the free

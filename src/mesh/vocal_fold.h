@@ -52,6 +52,12 @@ struct VocalFoldGeometry
   std::vector<std::array<double, 2>> free_profile() const;
 };
 
+/// Inside a gmsh build function (rank 0): the fold as an OpenCASCADE
+/// entity of the current model, not yet synchronised — the profile's
+/// plane surface (dim 2, in z = 0) or its extrusion over the length
+/// (dim 3); returns its tag
+int add_fold_body(const VocalFoldGeometry& g, int dim);
+
 /// Tetrahedral mesh of the fold (dim 3), or triangle mesh of its coronal
 /// section (dim 2, the profile in z = 0). Facet groups "lateral" (x = 0, 1),
 /// "anterior" (z = 0, 2) and "posterior" (z = length, 3) in 3D only,

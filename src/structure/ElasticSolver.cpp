@@ -68,6 +68,15 @@ void fsai::structure::SolidParameters::bind(fsai::common::Parameters& p)
         "harmonic, a foundation mu (pi/L)^2 u); 0: plane strain [m]");
 }
 //-----------------------------------------------------------------------------
+void fsai::structure::SolidParameters::set_damping_ratio(double zeta,
+                                                         double f_low,
+                                                         double f_high)
+{
+  const double wl = 2 * M_PI * f_low, wh = 2 * M_PI * f_high;
+  rayleigh_mass = 2 * zeta * wl * wh / (wl + wh);
+  rayleigh_stiffness = 2 * zeta / (wl + wh);
+}
+//-----------------------------------------------------------------------------
 void fsai::structure::SolidParameters::validate() const
 {
   fsai::require(model == "linear" or model == "svk", "--solid.model",

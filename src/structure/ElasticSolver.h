@@ -89,6 +89,10 @@ struct SolidParameters
 
   void bind(fsai::common::Parameters& p);
   void validate() const;
+  /// Rayleigh damping with ratio ζ at f_low and f_high [Hz] (ε1 = 2ζ ω_l
+  /// ω_h/(ω_l + ω_h), ε2 = 2ζ/(ω_l + ω_h)); f_low = 0: stiffness-
+  /// proportional only, ζ at f_high
+  void set_damping_ratio(double zeta, double f_low, double f_high);
 };
 
 /// The step's weights (E18, E18a): β, γ of Newmark's kinematics and the
