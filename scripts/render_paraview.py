@@ -6,9 +6,8 @@ usage: xvfb-run -a pvbatch scripts/render_paraview.py RUN_DIR [--time T]
 
 For every `*.xdmf` in RUN_DIR, at the last time written (or the one nearest
 --time), writes RUN_DIR/<name>.png:
-- DOLFINx writes each function as its own grid on the same mesh, which
-  ParaView's XDMF reader returns as separate pieces; a Programmable Filter
-  joins their arrays on the one mesh.
+- DOLFINx writes each function as its own grid on the same mesh;
+  scripts/paraview_xdmf.py joins their arrays on the one mesh.
 - A mesh displacement field ("mesh_displacement" or "displacement") moves
   the reference mesh to the current one (Warp By Vector, scale 1: the ALE
   meshes are written in the reference configuration).
@@ -25,8 +24,9 @@ import os
 import sys
 
 from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFunction,
-                             Hide, ProgrammableFilter, Render, ResetCamera,
-                             SaveScreenshot, Show, WarpByVector, Xdmf3ReaderS)
+                             Hide, Render, ResetCamera, SaveScreenshot, Show,
+                             WarpByVector)
+from paraview_xdmf import joined
 
 ap = argparse.ArgumentParser()
 ap.add_argument("run")
@@ -39,40 +39,13 @@ if not files:
     print(f"render_paraview: no .xdmf file in '{args.run}'", file=sys.stderr)
     sys.exit(2)
 
-# Runs inside ParaView's Programmable Filter: one dataset with every piece's
-# point and cell arrays (the pieces share points and cells)
-JOIN = """
-inp = self.GetInputDataObject(0, 0)
-out = self.GetOutputDataObject(0)
-if not inp.IsA("vtkCompositeDataSet"):
-    out.ShallowCopy(inp)
-    return
-it = inp.NewIterator()
-it.InitTraversal()
-first = True
-while not it.IsDoneWithTraversal():
-    ds = it.GetCurrentDataObject()
-    if first:
-        out.CopyStructure(ds)
-        first = False
-    for data, target in ((ds.GetPointData(), out.GetPointData()),
-                         (ds.GetCellData(), out.GetCellData())):
-        for k in range(data.GetNumberOfArrays()):
-            target.AddArray(data.GetArray(k))
-    it.GoToNextItem()
-"""
-
 view = GetActiveViewOrCreate("RenderView")
 view.OrientationAxesVisibility = 0
 view.InteractionMode = "2D"
 for path in files:
-    reader = Xdmf3ReaderS(FileName=[path])
-    reader.UpdatePipelineInformation()
+    reader, data = joined(path)
     times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
     t = times[-1] if args.time is None else builtins.min(times, key=lambda s: abs(s - args.time))
-    data = ProgrammableFilter(Input=reader)
-    data.OutputDataSetType = "vtkUnstructuredGrid"
-    data.Script = JOIN
     data.UpdatePipeline(t)
     point = {n: data.PointData[n].GetNumberOfComponents() for n in data.PointData.keys()}
     cell = list(data.CellData.keys())

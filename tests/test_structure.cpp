@@ -11,6 +11,7 @@
 #include <mesh/benchmarks.h>
 #include <mesh/vocal_fold.h>
 #include <structure/ElasticSolver.h>
+#include <structure/ModalProjection.h>
 #include <structure/modal.h>
 #include <xtensor/xview.hpp>
 
@@ -70,6 +71,54 @@ TEST_CASE(
     CHECK(std::abs(err[1][n]) < 0.01); // P2 within 1 %
     CHECK(err[0][n] > 0.10); // P1 on the same mesh: locked, > 10 % stiff
   }
+}
+
+TEST_CASE("Modal projection: a sum of modes gives back its coefficients",
+          "[structure][mpi]")
+{
+  // A small cantilever (0.1 x 0.02 x 0.02, P2): u = 2 φ_1 − 0.5 φ_3 +
+  // 0.25 φ_4 has q = (2, 0, −0.5, 0.25) and nothing left out; a field
+  // outside the modes' span (u = x₀, uniform along x) leaves a share out
+  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
+      MPI_COMM_WORLD, {{{0, 0, 0}, {0.1, 0.02, 0.02}}}, {10, 2, 2},
+      dolfinx::mesh::CellType::tetrahedron,
+      dolfinx::mesh::GhostMode::shared_facet));
+  SolidParameters p;
+  p.degree = 2;
+  p.material = {1e6, 0.3, 1000.0};
+  ElasticSolver solid(mesh, facets_at_x0(*mesh), {}, p, 1.0);
+  const fsai::structure::ModalProjection projection(solid, 4);
+  const auto& modes = projection.modes();
+  REQUIRE(modes.size() == 4);
+  dolfinx::fem::Function<double> u(solid.space());
+  auto ua = u.x()->mutable_array();
+  const std::array<double, 4> c = {2.0, 0.0, -0.5, 0.25};
+  for (std::size_t k = 0; k < 4; ++k)
+  {
+    const auto phi = modes[k].shape->x()->array();
+    for (std::size_t i = 0; i < ua.size(); ++i)
+      ua[i] += c[k] * phi[i];
+  }
+  const auto q = projection.coordinates(u);
+  REQUIRE(q.size() == 5);
+  for (std::size_t k = 0; k < 4; ++k)
+    CHECK(std::abs(q[k] - c[k]) < 1e-9);
+  CHECK(q[4] < 1e-9);
+  for (std::size_t i = 0; i < ua.size(); ++i)
+    ua[i] = (i % 3 == 0) ? 1e-3 : 0.0;
+  CHECK(projection.coordinates(u)[4] > 0.05);
+
+  // Shares of the oscillation: q_1 swings ±1, q_2 ±2 with equal modal
+  // masses -> 1/5 and 4/5; the first row (before the window) is ignored
+  std::vector<std::vector<double>> series = {{100.0, 100.0}};
+  for (int i = 0; i < 400; ++i)
+  {
+    const double s = std::sin(2 * M_PI * i / 40.0);
+    series.push_back({3.0 + s, -1.0 + 2 * s});
+  }
+  const auto share = fsai::structure::modal_shares(series, {1.0, 1.0}, 1);
+  CHECK(std::abs(share[0] - 0.2) < 1e-12);
+  CHECK(std::abs(share[1] - 0.8) < 1e-12);
 }
 
 TEST_CASE("Clamped section: plane-strain modes shifted by (mu/rho)(pi/L)^2, "

@@ -10,10 +10,12 @@
 //   mpirun -n 2 ./fsai_fold3d --p-sub 800 --duration 0.03
 //
 // Outputs in --output (default results/fsai_fold3d): series.csv (t, Q,
-// smallest half-gap, medial displacement, coupling iterations),
+// smallest half-gap, medial displacement, coupling iterations, the fold's
+// coordinates in its first --modes in-vacuo modes),
 // coupling.csv, flow.xdmf and fold.xdmf, summary.json (f0_hz, q_peak_m3s,
 // flow_dofs, solid_dofs, krylov_iterations_mean, coupling_iterations_mean,
-// wall_per_sim_s). Checkpoints and restarts: --checkpoint-every N,
+// wall_per_sim_s, mode_hz, mode_shares). Checkpoints and restarts:
+// --checkpoint-every N,
 // --restart DIR (io::RunLoop).
 
 #include <common/Parameters.h>
@@ -26,7 +28,9 @@
 #include <io/RunSummary.h>
 #include <io/TimeSeriesWriter.h>
 #include <io/output_dir.h>
+#include <structure/ModalProjection.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -70,18 +74,24 @@ int main(int argc, char* argv[])
 
         // 3. Time loop (the series' kept rows rebuild the statistics)
         const long n = std::lround(sp.duration / sp.dt);
+        std::vector<std::string> columns
+            = {"t_s",         "Q_m3s",       "gap_m",
+               "ux_medial_m", "uy_medial_m", "iterations"};
+        for (int k = 1; k <= sp.modes; ++k)
+          columns.push_back(fmt::format("q{}_m", k));
+        if (sp.modes > 0)
+          columns.push_back("modal_rest"); // share the modes leave out
         std::vector<double> t, gap, Q;
+        std::vector<std::vector<double>> modal; // q_1..q_n, rest share
         long its = 0;
         for (const auto& r :
-             loop.open_series(sp.output + "/series.csv",
-                              {"t_s", "Q_m3s", "gap_m", "ux_medial_m",
-                               "uy_medial_m", "iterations"},
-                              summary))
+             loop.open_series(sp.output + "/series.csv", columns, summary))
         {
           t.push_back(r[0]);
           Q.push_back(r[1]);
           gap.push_back(r[2]);
           its += long(r[5]);
+          modal.emplace_back(r.begin() + 6, r.end());
         }
         fsai::glottis::Fold3dSample s;
         io::RunHooks hooks;
@@ -93,7 +103,11 @@ int main(int argc, char* argv[])
             flow_xdmf->write(s.t);
             fold_xdmf->write(s.t);
           }
-          loop.row({s.t, s.Q, s.gap, s.ux, s.uy, double(s.iterations)});
+          std::vector<double> row
+              = {s.t, s.Q, s.gap, s.ux, s.uy, double(s.iterations)};
+          row.insert(row.end(), s.modal.begin(), s.modal.end());
+          loop.row(row);
+          modal.push_back(s.modal);
           t.push_back(s.t);
           Q.push_back(s.Q);
           gap.push_back(s.gap);
@@ -127,6 +141,19 @@ int main(int argc, char* argv[])
             q_mean += Q[i];
             ++m;
           }
+        }
+        if (const auto* modes = scene.modes())
+        {
+          // The modes' shares of the oscillation (about its mean) and the
+          // mean share of the displacement they leave out, over the window
+          const auto first = std::size_t(
+              std::lower_bound(t.begin(), t.end(), from) - t.begin());
+          summary.set("mode_shares", fsai::structure::modal_shares(
+                                         modal, modes->modal_masses(), first));
+          double rest = 0;
+          for (std::size_t i = first; i < modal.size(); ++i)
+            rest += modal[i].back() / double(modal.size() - first);
+          summary.set("modal_rest_mean", rest);
         }
         summary.set("cycles", c.cycles);
         summary.set("f0_hz", c.f0_hz);

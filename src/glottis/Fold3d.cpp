@@ -10,6 +10,7 @@
 #include <io/PointProbes.h>
 #include <io/RunSummary.h>
 #include <io/run_state.h>
+#include <structure/ModalProjection.h>
 
 #include <cmath>
 #include <limits>
@@ -28,6 +29,8 @@ void fsai::glottis::Fold3dParameters::bind(fsai::common::Parameters& p)
   p.add("zeta", zeta, "fold damping ratio (stiffness-proportional)");
   p.add("f_zeta", f_zeta, "frequency at which the damping ratio is zeta [Hz]");
   p.add("layers", layers, "1 (homogeneous fold) or 2 (body and cover)");
+  p.add("modes", modes,
+        "in-vacuo modes the fold's motion is projected on (0: none)");
   p.add("cover.E", cover.E, "Young's modulus of the cover [Pa]");
   p.add("cover.nu", cover.nu, "Poisson's ratio of the cover");
   p.add("cover.rho", cover.rho, "density of the cover [kg/m^3]");
@@ -49,6 +52,7 @@ void fsai::glottis::Fold3dParameters::validate() const
   fsai::require(zeta >= 0 and zeta < 1, "--zeta", "in [0, 1)", zeta);
   fsai::require_positive("--f_zeta", f_zeta);
   fsai::require(layers == 1 or layers == 2, "--layers", "1 or 2", layers);
+  fsai::require(modes >= 0 and modes <= 50, "--modes", "in [0, 50]", modes);
   cover.validate("--cover");
   run.validate();
 }
@@ -163,6 +167,9 @@ fsai::glottis::Fold3dPhonation::Fold3dPhonation(MPI_Comm comm,
       sm.mesh, find(sm, "clamped"), find(sm, "interface"), s.solid, s.scene.dt);
   if (s.scene.layers == 2)
     _solid->set_material(mesh::cover_cells(*sm.mesh, s.fold), s.scene.cover);
+  if (s.scene.modes > 0)
+    _modes
+        = std::make_unique<structure::ModalProjection>(*_solid, s.scene.modes);
 
   // Mesh motion: the fold's surface moves the air; the ends and walls
   // stay; the symmetry plane slides in itself
@@ -237,6 +244,8 @@ fsai::glottis::Fold3dSample fsai::glottis::Fold3dPhonation::step()
   const auto u = _medial->values(*_solid->displacement());
   out.ux = u[0];
   out.uy = u[1];
+  if (_modes)
+    out.modal = _modes->coordinates(*_solid->displacement());
   return out;
 }
 //-----------------------------------------------------------------------------
@@ -275,6 +284,8 @@ void fsai::glottis::Fold3dPhonation::describe(io::RunSummary& summary) const
   summary.set("flow_dofs", _flow->dofs());
   summary.set("solid_dofs", solid_dofs());
   summary.set("rest_half_gap_m", _setup.channel.half_gap);
+  if (_modes)
+    summary.set("mode_hz", _modes->frequencies_hz());
 }
 //-----------------------------------------------------------------------------
 std::int64_t fsai::glottis::Fold3dPhonation::solid_dofs() const

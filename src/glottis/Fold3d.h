@@ -32,6 +32,10 @@ namespace fsai::coupling
 class InterfaceMap;
 class PartitionedFsi;
 } // namespace fsai::coupling
+namespace fsai::structure
+{
+class ModalProjection;
+}
 namespace fsai::io
 {
 class PointProbes;
@@ -57,6 +61,8 @@ struct Fold3dParameters
   double zeta = 0.01;
   double f_zeta = 100.0; ///< [Hz]
   int layers = 1;        ///< 1 (homogeneous) or 2 (body and cover)
+  /// In-vacuo modes the fold's motion is projected on (0: none)
+  int modes = 6;
   structure::Material cover{2e3, 0.4, 1000.0};
   bool quick = false;
   io::RestartOptions run;
@@ -95,6 +101,9 @@ struct Fold3dSample
   double uy = 0; ///< its inferior–superior displacement [m]
   int iterations = 0;
   bool converged = true;
+  /// The fold's modal coordinates q_1..q_n [m], then the share of its
+  /// displacement's M-norm² they leave out (structure::ModalProjection)
+  std::vector<double> modal;
 };
 
 class Fold3dPhonation
@@ -125,6 +134,8 @@ public:
   std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>
   fold_fields() const;
   double time() const { return _t; }
+  /// The modal projection (nullptr with --modes 0)
+  const structure::ModalProjection* modes() const { return _modes.get(); }
 
 private:
   MPI_Comm _comm;
@@ -137,6 +148,7 @@ private:
   std::unique_ptr<coupling::InterfaceMap> _map;
   std::unique_ptr<coupling::PartitionedFsi> _fsi;
   std::unique_ptr<io::PointProbes> _medial;
+  std::unique_ptr<structure::ModalProjection> _modes;
   // Interface dofs in the middle fifth of the length, their reference x
   std::vector<std::int32_t> _gap_dofs;
   std::vector<double> _gap_X;

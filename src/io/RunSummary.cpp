@@ -4,6 +4,25 @@
 #include "output_dir.h"
 #include <filesystem>
 #include <fstream>
+#include <sys/resource.h>
+#include <vector>
+
+namespace
+{
+/// Each rank's peak resident memory so far [MiB] (getrusage; Linux reports
+/// ru_maxrss in KiB), on every rank
+std::vector<double> peak_memory_mib(MPI_Comm comm)
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double mine = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  std::vector<double> all(size);
+  MPI_Allgather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, comm);
+  return all;
+}
+} // namespace
 
 //-----------------------------------------------------------------------------
 fsai::io::RunSummary::RunSummary(MPI_Comm comm, std::string program)
@@ -33,6 +52,7 @@ nlohmann::json fsai::io::RunSummary::json() const
   j["parameters"] = _parameters;
   j["mpi_size"] = size;
   j["wall_s"] = wall_s();
+  j["peak_memory_mib_per_rank"] = peak_memory_mib(_comm);
   j["timings"] = common::timings_json();
   return j;
 }

@@ -9,7 +9,8 @@
 namespace fsai::io
 {
 /// The run's summary.json (docs/model.md §6): program, parameters in
-/// effect, MPI size, `wall_s`, fsai timings and the scene's key results
+/// effect, MPI size, `wall_s`, each rank's peak resident memory
+/// (`peak_memory_mib_per_rank`), fsai timings and the scene's key results
 /// under fixed names. Written by rank 0 atomically (temporary file +
 /// rename), so readers never see a half-written file; write() may be called
 /// repeatedly (e.g. at checkpoints) and at the end.
@@ -33,9 +34,10 @@ public:
   double wall_s() const;
 
   /// Write `path` (rank 0) with the current wall time and timings
+  /// (collective)
   void write(const std::string& path) const;
 
-  /// The JSON that write() would write
+  /// The JSON that write() would write (collective)
   nlohmann::json json() const;
 
 private:

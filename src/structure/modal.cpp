@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <slepceps.h>
 
 using namespace dolfinx;
@@ -68,6 +69,24 @@ fsai::structure::modal_analysis(const ElasticSolver& solid, int n)
   // Directional kinetic-energy shares use the lumped ρ at the dofs: M x
   // split by component
   const int bs = V->dofmap()->index_map_bs();
+  // The dofs' positions and the mesh's extent, for the modes' sign
+  const std::vector<double> X = V->tabulate_dof_coordinates(false);
+  std::array<double, 3> lo, hi;
+  for (int c = 0; c < 3; ++c)
+  {
+    lo[c] = std::numeric_limits<double>::max();
+    hi[c] = std::numeric_limits<double>::lowest();
+  }
+  for (std::size_t i = 0; i < X.size(); i += 3)
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], X[i + c]);
+      hi[c] = std::max(hi[c], X[i + c]);
+    }
+  MPI_Allreduce(MPI_IN_PLACE, lo.data(), 3, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, hi.data(), 3, MPI_DOUBLE, MPI_MAX, comm);
+  const double span
+      = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300});
   std::vector<Mode> modes;
   Vec xr, Mx;
   MatCreateVecs(K.mat(), &xr, nullptr);
@@ -91,17 +110,28 @@ fsai::structure::modal_analysis(const ElasticSolver& solid, int n)
     VecRestoreArrayRead(xr, &x);
     m.shape->x()->scatter_fwd();
 
-    // Normalise max |u| = 1 (sign: largest entry positive)
-    double amax = 0.0, loc = 0.0;
+    // Normalise max |u| = 1, with a sign that does not depend on the
+    // partition (SLEPc's does): Σ_j u_j w_j > 0 over the owned dofs, with
+    // a weight w linear in the node's position and the component, so that
+    // no mode shape (even or odd in any direction) is orthogonal to it
+    double amax = 0.0, weighted = 0.0;
     for (std::int32_t j = 0; j < nloc; ++j)
-      if (std::abs(u[j]) > std::abs(loc))
-        loc = u[j];
-    std::vector<double> in = {std::abs(loc)}, out(1);
+    {
+      amax = std::max(amax, std::abs(u[j]));
+      const double* p = &X[3 * (j / bs)];
+      weighted
+          += u[j]
+             * (1.0 + 0.3 * (j % bs) + (p[0] - lo[0]) / span
+                + 2.0 * (p[1] - lo[1]) / span + 3.0 * (p[2] - lo[2]) / span);
+    }
+    std::array<double, 2> in = {amax, weighted}, out{};
     MPI_Allreduce(in.data(), out.data(), 1, MPI_DOUBLE, MPI_MAX, comm);
+    MPI_Allreduce(&in[1], &out[1], 1, MPI_DOUBLE, MPI_SUM, comm);
     amax = out[0];
+    const double scale = out[1] < 0 ? -1.0 / amax : 1.0 / amax;
     if (amax > 0)
       for (auto& v : u)
-        v /= amax;
+        v *= scale;
 
     // Kinetic energy by direction: Σ_dofs of component c of x (M x)
     MatMult(M.mat(), xr, Mx);

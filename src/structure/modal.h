@@ -15,7 +15,7 @@
 
 namespace fsai::structure
 {
-/// One eigenmode
+/// One eigenmode (max |φ| = 1; its sign does not depend on the partition)
 struct Mode
 {
   double frequency_hz;
