@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # A demo on 2 MPI ranks must give the serial results: every number in
 # summary.json outside "parameters" (and other than wall times, rank counts,
-# memory, timers and Krylov iteration counts, which depend on the partition through
-# BoomerAMG's parallel coarsening while the solution is the same to the
-# solver's tolerance) within a relative 1e-6 (absolute 1e-12 near 0).
+# memory, timers and Krylov iteration counts, which depend on the partition
+# through BoomerAMG's parallel coarsening while the solution is the same to
+# the solver's tolerance) within a relative 1e-6 (absolute 1e-12 near 0).
 # usage: mpi_matches_serial.sh MPIEXEC DEMO ARGS...
 mpiexec=$1
 demo=$2

@@ -15,8 +15,7 @@
 // coupling.csv, flow.xdmf and fold.xdmf, summary.json (f0_hz, q_peak_m3s,
 // flow_dofs, solid_dofs, krylov_iterations_mean, coupling_iterations_mean,
 // wall_per_sim_s, mode_hz, mode_shares). Checkpoints and restarts:
-// --checkpoint-every N,
-// --restart DIR (io::RunLoop).
+// --checkpoint-every N, --restart DIR (io::RunLoop).
 
 #include <common/Parameters.h>
 #include <common/Runtime.h>

@@ -6,28 +6,21 @@
 //-----------------------------------------------------------------------------
 fsai::structure::ModalProjection::ModalProjection(const ElasticSolver& solid,
                                                   int n)
-    : _modes(modal_analysis(solid, n)), _M(solid.mass_matrix())
+    : _modes(modal_analysis(solid, n)), _M(solid.mass_matrix()),
+      _Mu(*solid.space()->dofmap()->index_map,
+          solid.space()->dofmap()->index_map_bs())
 {
-  MatCreateVecs(_M.mat(), &_Mu, nullptr);
   for (const auto& mode : _modes)
   {
-    Vec phi = dolfinx::la::petsc::create_vector_wrap(*mode.shape->x());
-    Vec Mphi;
-    VecDuplicate(_Mu, &Mphi);
-    MatMult(_M.mat(), phi, Mphi);
+    dolfinx::la::petsc::Vector phi(
+        dolfinx::la::petsc::create_vector_wrap(*mode.shape->x()), false);
+    auto& Mphi = _Mphi.emplace_back(*solid.space()->dofmap()->index_map,
+                                    solid.space()->dofmap()->index_map_bs());
+    MatMult(_M.mat(), phi.vec(), Mphi.vec());
     double m = 0;
-    VecDot(phi, Mphi, &m);
-    VecDestroy(&phi);
-    _Mphi.push_back(Mphi);
+    VecDot(phi.vec(), Mphi.vec(), &m);
     _m.push_back(m);
   }
-}
-//-----------------------------------------------------------------------------
-fsai::structure::ModalProjection::~ModalProjection()
-{
-  for (auto& v : _Mphi)
-    VecDestroy(&v);
-  VecDestroy(&_Mu);
 }
 //-----------------------------------------------------------------------------
 std::vector<double> fsai::structure::ModalProjection::frequencies_hz() const
@@ -42,20 +35,20 @@ std::vector<double> fsai::structure::ModalProjection::coordinates(
     const dolfinx::fem::Function<double>& u) const
 {
   common::ScopedTimer timer("modal: projection");
-  Vec x = dolfinx::la::petsc::create_vector_wrap(*u.x());
+  dolfinx::la::petsc::Vector x(dolfinx::la::petsc::create_vector_wrap(*u.x()),
+                               false);
   std::vector<double> q;
   double captured = 0;
   for (std::size_t k = 0; k < _Mphi.size(); ++k)
   {
     double d = 0;
-    VecDot(x, _Mphi[k], &d); // M symmetric: φᵀ M u = uᵀ (M φ)
+    VecDot(x.vec(), _Mphi[k].vec(), &d); // M symmetric: φᵀ M u = uᵀ (M φ)
     q.push_back(d / _m[k]);
     captured += _m[k] * q.back() * q.back();
   }
-  MatMult(_M.mat(), x, _Mu);
+  MatMult(_M.mat(), x.vec(), _Mu.vec());
   double uMu = 0;
-  VecDot(x, _Mu, &uMu);
-  VecDestroy(&x);
+  VecDot(x.vec(), _Mu.vec(), &uMu);
   q.push_back(uMu > 0 ? std::max(0.0, 1.0 - captured / uMu) : 0.0);
   return q;
 }

@@ -22,9 +22,6 @@ class ModalProjection
 public:
   /// The first `n` modes of the solver's linear stiffness and mass
   ModalProjection(const ElasticSolver& solid, int n);
-  ~ModalProjection();
-  ModalProjection(const ModalProjection&) = delete;
-  ModalProjection& operator=(const ModalProjection&) = delete;
 
   /// The modes' frequencies [Hz]
   std::vector<double> frequencies_hz() const;
@@ -40,9 +37,9 @@ public:
 private:
   std::vector<Mode> _modes;
   dolfinx::la::petsc::Matrix _M;
-  std::vector<Vec> _Mphi; ///< M φ_k
-  std::vector<double> _m; ///< φ_kᵀ M φ_k
-  Vec _Mu = nullptr;
+  std::vector<dolfinx::la::petsc::Vector> _Mphi; ///< M φ_k
+  std::vector<double> _m;                        ///< φ_kᵀ M φ_k
+  dolfinx::la::petsc::Vector _Mu;                ///< workspace of coordinates()
 };
 
 /// Each mode's share of the motion's variance over the window: from the
